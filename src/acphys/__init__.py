@@ -1,0 +1,45 @@
+"""acphys: the retail Asheron's Call client physics (build 11.4186), one object tick at a time.
+
+>>> import acphys
+>>> sim = acphys.load_scenario()          # the embedded default scenario
+>>> sim.run(until=1.0)
+>>> sim.body("skydiver").velocity.z < 0
+True
+"""
+
+from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState
+from acphys.math import Frame, Position, Vector3
+from acphys.part_array import PartArray
+from acphys.physics_obj import PhysicsObj
+from acphys.scenario import ScenarioError, load_scenario, parse_scenario
+from acphys.setup import Setup
+from acphys.simulation import Event, Physics, Simulation
+from acphys.trace import Divergence, TraceWriter, diff_traces, read_trace
+from acphys.world import ObjCell, World
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Divergence",
+    "Event",
+    "Frame",
+    "ObjCell",
+    "ObjectInfoState",
+    "PartArray",
+    "Physics",
+    "PhysicsObj",
+    "PhysicsState",
+    "Position",
+    "ScenarioError",
+    "Setup",
+    "Simulation",
+    "TraceWriter",
+    "TransientState",
+    "TransitionState",
+    "Vector3",
+    "World",
+    "diff_traces",
+    "load_scenario",
+    "parse_scenario",
+    "read_trace",
+]

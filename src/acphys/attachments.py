@@ -1,0 +1,67 @@
+"""The optional per-body managers, as the tick calls them.
+
+``UpdateObjectInternal`` and ``UpdatePositionInternal`` call each manager a
+body carries, in retail order, and skip the ones it lacks. These protocols
+name exactly the calls the tick makes; the managers themselves arrive with
+the motion and manager issues.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Protocol
+
+if TYPE_CHECKING:
+    from acphys.math.frame import Frame
+    from acphys.physics_obj import PhysicsObj
+
+
+class MovementManager(Protocol):
+    """Retail ``MovementManager``: locomotion commands, told when the body lands or leaves ground."""
+
+    def use_time(self) -> None: ...
+
+    def hit_ground(self) -> None: ...
+
+    def leave_ground(self) -> None: ...
+
+
+class PositionManager(Protocol):
+    """Retail ``PositionManager``: interpolation, sticky and constraint offsets."""
+
+    def adjust_offset(self, offset_frame: Frame, quantum: float) -> None: ...
+
+    def use_time(self) -> None: ...
+
+
+class MotionTableManager(Protocol):
+    """Retail ``MotionTableManager``: pending animations, ticked by ``CPartArray::HandleMovement``."""
+
+    def use_time(self) -> None: ...
+
+
+class DetectionManager(Protocol):
+    def check_detection(self) -> None: ...
+
+
+class TargetManager(Protocol):
+    def handle_targetting(self) -> None: ...
+
+
+class ParticleManager(Protocol):
+    def update_particles(self) -> None: ...
+
+
+class ScriptManager(Protocol):
+    def update_scripts(self) -> None: ...
+
+
+class PhysicsObjHook(Protocol):
+    """A tween run every tick by ``process_hooks``; ``execute`` returns True when finished."""
+
+    def execute(self, obj: PhysicsObj) -> bool: ...
+
+
+class AnimHook(Protocol):
+    """A one-shot animation hook, fired once by ``process_hooks`` and then dropped."""
+
+    def execute(self, obj: PhysicsObj) -> None: ...

@@ -1,0 +1,155 @@
+"""The ``acphys`` command (contract 3): run, check and diff.
+
+Every error prints one line starting ``acphys: error:`` and exits non-zero
+(2 for bad input); no command ever shows a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Sequence
+from typing import NoReturn
+
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+from rich.table import Table
+
+from acphys import __version__
+from acphys.flags import flag_names
+from acphys.math.cell_id import format_cell_id
+from acphys.scenario import ScenarioError, builtin_scenarios, load_scenario
+from acphys.simulation import Simulation
+from acphys.trace import TraceError, diff_traces
+
+#: Runs with more driver ticks than this show a progress bar (on a terminal).
+PROGRESS_TICKS = 20_000
+
+EXIT_DIVERGED = 1
+EXIT_BAD_INPUT = 2
+EXIT_INTERNAL = 3
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line."""
+
+    def error(self, message: str) -> NoReturn:
+        print(f"acphys: error: {message} (see acphys --help)", file=sys.stderr)
+        sys.exit(EXIT_BAD_INPUT)
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="acphys", description=__doc__.splitlines()[0] if __doc__ else None)
+    parser.add_argument("--version", action="version", version=f"acphys {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    run = commands.add_parser("run", help="run a scenario (the embedded default when none is given)")
+    run.add_argument(
+        "scenario",
+        nargs="?",
+        help=f"a scenario file, or a built-in name ({', '.join(builtin_scenarios())})",
+    )
+    run.add_argument("--trace", metavar="FILE", help="write a JSON Lines trace of every step")
+    run.add_argument("--until", metavar="SECONDS", type=float, help="stop at this time instead")
+
+    check = commands.add_parser("check", help="validate a scenario file")
+    check.add_argument("scenario")
+
+    diff = commands.add_parser("diff", help="the first divergence between two traces")
+    diff.add_argument("a")
+    diff.add_argument("b")
+    diff.add_argument("--tol", type=float, default=1e-6, help="absolute tolerance (default 1e-6)")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = _build_parser().parse_args(argv)
+    console = Console()
+    try:
+        if args.command == "run":
+            return _run(console, args.scenario, args.trace, args.until)
+        if args.command == "check":
+            return _check(console, args.scenario)
+        return _diff(console, args.a, args.b, args.tol)
+    except (ScenarioError, TraceError) as error:
+        return _fail(str(error), EXIT_BAD_INPUT)
+    except OSError as error:
+        return _fail(f"{error.filename or ''}: {error.strerror or error}", EXIT_BAD_INPUT)
+    except KeyboardInterrupt:
+        return _fail("interrupted", EXIT_BAD_INPUT)
+    except Exception as error:  # an acphys bug: still one line, but say so
+        return _fail(f"internal error ({type(error).__name__}: {error}); please report it", EXIT_INTERNAL)
+
+
+def _fail(message: str, code: int) -> int:
+    print(f"acphys: error: {message}", file=sys.stderr)
+    return code
+
+
+def _run(console: Console, scenario: str | None, trace: str | None, until: float | None) -> int:
+    sim = load_scenario(scenario)
+    end = sim.duration if until is None else until
+    if not (math.isfinite(end) and end >= 0.0):
+        return _fail(f"--until must be a non-negative number of seconds, got {until}", EXIT_BAD_INPUT)
+    ticks = end * sim.driver_hz
+    if ticks > PROGRESS_TICKS and console.is_terminal:
+        with Progress(
+            TextColumn("[bold]{task.description}"),
+            BarColumn(),
+            TextColumn("{task.completed:.1f}/{task.total:.1f} s"),
+            TimeRemainingColumn(),
+            console=console,
+            transient=True,
+        ) as progress:
+            task = progress.add_task(sim.name, total=end)
+            sim.run(until=end, trace=trace, progress=lambda now, _: progress.update(task, completed=now))
+    else:
+        sim.run(until=end, trace=trace)
+    console.print(_summary(sim))
+    if trace is not None:
+        console.print(f"trace: {trace}")
+    return 0
+
+
+def _summary(sim: Simulation) -> Table:
+    table = Table(title=f"{sim.name}: {sim.time:g} s simulated, {len(sim.bodies)} bodies")
+    for column in ("body", "cell", "origin (m)", "heading", "velocity (m/s)", "transient"):
+        table.add_column(column)
+    for body in sim.bodies:
+        origin = body.position.frame.origin
+        v = body.velocity
+        table.add_row(
+            body.name,
+            format_cell_id(body.position.objcell_id),
+            f"{origin.x:.3f}, {origin.y:.3f}, {origin.z:.3f}",
+            f"{body.position.frame.get_heading():.1f}°",
+            f"{v.x:.3f}, {v.y:.3f}, {v.z:.3f}",
+            " ".join(flag_names(body.transient_state)) or "-",
+        )
+    return table
+
+
+def _check(console: Console, scenario: str) -> int:
+    sim = load_scenario(scenario)
+    events = len(sim._events)
+    console.print(
+        f"ok: {sim.name}: {len(sim.bodies)} bodies, {events} events, "
+        f"{sim.duration:g} s at {sim.driver_hz:g} Hz"
+    )
+    return 0
+
+
+def _diff(console: Console, a: str, b: str, tol: float) -> int:
+    if not (math.isfinite(tol) and tol >= 0.0):
+        return _fail(f"--tol must be a non-negative number, got {tol}", EXIT_BAD_INPUT)
+    divergence = diff_traces(a, b, tol)
+    if divergence is None:
+        console.print(f"identical within {tol:g}")
+        return 0
+    console.print(divergence.describe(), highlight=False)
+    return EXIT_DIVERGED
+
+
+if __name__ == "__main__":
+    sys.exit(main())

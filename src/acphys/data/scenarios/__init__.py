@@ -1,0 +1,1 @@
+"""Built-in scenario files; ``acphys run`` uses ``default.toml``."""

@@ -1,0 +1,162 @@
+"""Cell ids and the retail ``LandDefs`` coordinate conversions.
+
+A cell id is ``0xXXYYnnnn``: ``XX``/``YY`` name the 192-m landblock, ``nnnn``
+the cell inside it. Outdoor land cells have ``nnnn`` in 1..0x40
+(``1 + 8·cx + cy`` for the 24-m cell at column ``cx``, row ``cy``); env cells
+(indoors) have ``nnnn`` ≥ 0x100. "lcoord" is the global land-cell grid:
+``x = 8·XX + cx``, ``y = 8·YY + cy``, both in [0, 2040).
+"""
+
+from __future__ import annotations
+
+import math
+
+from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, CELLS_PER_BLOCK, EPSILON, MAX_LCOORD
+from acphys.math.vector import Vector3
+
+FIRST_ENV_CELL = 0x100
+LAST_LAND_CELL = 0x40
+
+
+def landblock_of(cell_id: int) -> int:
+    """The landblock id ``0xXXYY0000`` ... returned as ``0xXXYY`` (the high word)."""
+    return (cell_id >> 16) & 0xFFFF
+
+
+def cell_of(landblock: int, index: int) -> int:
+    """The full cell id for a landblock ``0xXXYY`` and a cell index ``nnnn``."""
+    return ((landblock & 0xFFFF) << 16) | (index & 0xFFFF)
+
+
+def is_outdoor(cell_id: int) -> bool:
+    """An outdoor land cell (``nnnn`` < 0x100)."""
+    return (cell_id & 0xFFFF) < FIRST_ENV_CELL
+
+
+def format_cell_id(cell_id: int) -> str:
+    """``0xA9B40021`` style, as traces write it."""
+    return f"0x{cell_id & 0xFFFFFFFF:08X}"
+
+
+def inbound_valid_cellid(cell_id: int) -> bool:
+    """A land cell (1..0x40), env cell (0x100..0xFFFD) or block (0xFFFF) inside the world.
+
+    Retail: LandDefs::inbound_valid_cellid @ 0x004979A0 (acclient.c:209467)
+    """
+    low = cell_id & 0xFFFF
+    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+        return False
+    x = (cell_id >> 21) & 0x7F8
+    y = (cell_id >> 13) & 0x7F8
+    return x < MAX_LCOORD and y < MAX_LCOORD
+
+
+def blockid_to_lcoord(block_id: int) -> tuple[int, int] | None:
+    """The lcoord of a landblock's south-west cell, or None for id 0 or out of the world.
+
+    Retail: LandDefs::blockid_to_lcoord @ 0x0043D680 (acclient.c:122259)
+    """
+    if not block_id:
+        return None
+    x = (block_id >> 21) & 0x7F8
+    y = 8 * ((block_id >> 16) & 0xFF)
+    if x < MAX_LCOORD and y < MAX_LCOORD:
+        return x, y
+    return None
+
+
+def gid_to_lcoord(cell_id: int) -> tuple[int, int] | None:
+    """The lcoord of an outdoor cell id, or None if it is not a valid land cell.
+
+    Retail: LandDefs::gid_to_lcoord @ 0x00497A90 (acclient.c:209520)
+    """
+    if not inbound_valid_cellid(cell_id) or not is_outdoor(cell_id):
+        return None
+    index = (cell_id & 0xFFFF) - 1
+    x = ((cell_id >> 21) & 0x7F8) + (index >> 3)
+    y = 8 * ((cell_id >> 16) & 0xFF) + (index & 7)
+    if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
+        return x, y
+    return None
+
+
+def lcoord_to_gid(x: int, y: int) -> int:
+    """The outdoor cell id of lcoord (x, y), or 0 outside the world.
+
+    Retail: LandDefs::lcoord_to_gid @ 0x004A19A0 (acclient.c:218181)
+    """
+    if x < 0 or y < 0 or x >= MAX_LCOORD or y >= MAX_LCOORD:
+        return 0
+    return (((y >> 3) | 32 * (x & ~7)) << 16) | ((y & 7) + 8 * (x & 7) + 1)
+
+
+def outdoor_cell_id(landblock: int, point: Vector3) -> int:
+    """The outdoor cell of landblock ``0xXXYY`` holding the landblock-local ``point``.
+
+    The point must lie inside the landblock ([0, 192) on x and y); use
+    :func:`adjust_to_outside` for points that may have left it.
+    """
+    if not (0.0 <= point.x < BLOCK_LENGTH and 0.0 <= point.y < BLOCK_LENGTH):
+        raise ValueError(f"point ({point.x}, {point.y}) is outside the 192-m landblock")
+    cx = int(point.x // CELL_LENGTH)
+    cy = int(point.y // CELL_LENGTH)
+    return cell_of(landblock, 1 + CELLS_PER_BLOCK * cx + cy)
+
+
+def get_outside_lcoord(cell_id: int, loc: Vector3) -> tuple[int, int] | None:
+    """The lcoord of the land cell under the block-local point ``loc``, or None off the world.
+
+    Retail: LandDefs::get_outside_lcoord @ 0x005A9B00 (acclient.c:467410)
+    """
+    low = cell_id & 0xFFFF
+    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+        return None
+    # blockid_to_lcoord writes the block's lcoord even when it then reports failure.
+    x = ((cell_id >> 21) & 0x7F8) + math.floor(loc.x / CELL_LENGTH)
+    y = 8 * ((cell_id >> 16) & 0xFF) + math.floor(loc.y / CELL_LENGTH)
+    if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
+        return x, y
+    return None
+
+
+def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
+    """Re-home a block-local point into the outdoor cell that holds it.
+
+    Snaps |x|, |y| < EPSILON to 0, finds the land cell under the point, and
+    rewrites ``loc`` in place to be local to that cell's landblock. Returns
+    the new cell id, or 0 when the point is off the world (``loc`` is then
+    left with the snapping only).
+
+    Retail: LandDefs::adjust_to_outside @ 0x005A9BC0 (acclient.c:467433)
+    """
+    low = cell_id & 0xFFFF
+    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+        return 0
+    if abs(loc.x) < EPSILON:
+        loc.x = 0.0
+    if abs(loc.y) < EPSILON:
+        loc.y = 0.0
+    lcoord = get_outside_lcoord(cell_id, loc)
+    if lcoord is None:
+        return 0
+    loc.x -= math.floor(loc.x / BLOCK_LENGTH) * BLOCK_LENGTH
+    loc.y -= math.floor(loc.y / BLOCK_LENGTH) * BLOCK_LENGTH
+    return lcoord_to_gid(*lcoord)
+
+
+def get_block_offset(cell_from: int, cell_to: int) -> Vector3:
+    """The offset from ``cell_from``'s landblock origin to ``cell_to``'s: Δblock × 192 m, z = 0.
+
+    Retail reads a cell id of 0 as "no block"; a ``cell_to`` of 0 makes it
+    read ``cell_from`` raw as the lcoord, which is meaningless, so acphys
+    raises instead.
+
+    Retail: LandDefs::get_block_offset @ 0x0043E630 (acclient.c:123109)
+    """
+    if (cell_from >> 16) == (cell_to >> 16):
+        return Vector3()
+    if not cell_to:
+        raise ValueError("get_block_offset: the destination cell id is 0 (no cell)")
+    fx, fy = ((cell_from >> 21) & 0x7F8, 8 * ((cell_from >> 16) & 0xFF)) if cell_from else (0, 0)
+    tx, ty = (cell_to >> 21) & 0x7F8, 8 * ((cell_to >> 16) & 0xFF)
+    return Vector3((tx - fx) * CELL_LENGTH, (ty - fy) * CELL_LENGTH, 0.0)

@@ -1,0 +1,370 @@
+"""``Frame``: an origin, a unit quaternion and its cached rotation matrix.
+
+Conventions, all retail's:
+
+* The quaternion is ``(qw, qx, qy, qz)``.
+* ``m`` is ``m_fl2gv``, the local-to-global rotation stored column by column:
+  ``m[0:3]`` is the local x axis in global coordinates, ``m[3:6]`` the local
+  y axis (the body's forward), ``m[6:9]`` the local z axis.
+* The matrix is refreshed only by :meth:`Frame.cache` (which
+  :meth:`Frame.set_rotate` calls). Code that writes the quaternion directly
+  must cache before anything reads the matrix, exactly as in retail.
+* Headings are compass degrees: 0 faces +y (north), 90 faces +x (east).
+"""
+
+from __future__ import annotations
+
+import math
+
+from acphys.constants import EPSILON
+from acphys.math.vector import Vector3, compass_heading
+
+
+class Frame:
+    """Retail ``Frame`` (acclient.h:30647)."""
+
+    __slots__ = ("m", "origin", "qw", "qx", "qy", "qz")
+
+    def __init__(
+        self,
+        origin: Vector3 | None = None,
+        qw: float = 1.0,
+        qx: float = 0.0,
+        qy: float = 0.0,
+        qz: float = 0.0,
+    ) -> None:
+        self.origin = origin.copy() if origin is not None else Vector3()
+        self.qw = float(qw)
+        self.qx = float(qx)
+        self.qy = float(qy)
+        self.qz = float(qz)
+        self.m = [0.0] * 9
+        self.cache()
+
+    @classmethod
+    def from_heading(cls, origin: Vector3, heading: float) -> Frame:
+        """A frame at ``origin`` facing compass ``heading`` degrees."""
+        frame = cls(origin)
+        frame.set_heading(heading)
+        return frame
+
+    def copy(self) -> Frame:
+        """An independent copy, cached matrix included (retail ``Frame::operator=``)."""
+        other = Frame.__new__(Frame)
+        other.origin = self.origin.copy()
+        other.qw, other.qx, other.qy, other.qz = self.qw, self.qx, self.qy, self.qz
+        other.m = self.m.copy()
+        return other
+
+    def assign(self, other: Frame) -> None:
+        """Copy ``other`` into this frame, cached matrix included (``Frame::operator=``)."""
+        self.origin.set(other.origin)
+        self.qw, self.qx, self.qy, self.qz = other.qw, other.qx, other.qy, other.qz
+        self.m[:] = other.m
+
+    @property
+    def rotation(self) -> tuple[float, float, float, float]:
+        """The quaternion as ``(w, x, y, z)``."""
+        return (self.qw, self.qx, self.qy, self.qz)
+
+    def __repr__(self) -> str:
+        return f"Frame({self.origin!r}, q=({self.qw}, {self.qx}, {self.qy}, {self.qz}))"
+
+    # -- the cached matrix ----------------------------------------------------------------
+
+    def cache(self) -> None:
+        """Recompute ``m`` (``m_fl2gv``) from the quaternion.
+
+        Retail: Frame::cache @ 0x00534DF0 (acclient.c:356983)
+        """
+        qw, qx, qy, qz = self.qw, self.qx, self.qy, self.qz
+        x2, y2, z2 = qx + qx, qy + qy, qz + qz
+        wx, wy, wz = qw * x2, qw * y2, qw * z2
+        xx, xy, xz = qx * x2, qx * y2, qx * z2
+        yy, yz, zz = qy * y2, qy * z2, qz * z2
+        m = self.m
+        m[0] = 1.0 - yy - zz
+        m[1] = xy + wz
+        m[2] = xz - wy
+        m[3] = xy - wz
+        m[4] = 1.0 - xx - zz
+        m[5] = yz + wx
+        m[6] = xz + wy
+        m[7] = yz - wx
+        m[8] = 1.0 - xx - yy
+
+    # -- validity --------------------------------------------------------------------------
+
+    def is_valid(self) -> bool:
+        """No NaN anywhere and a quaternion norm within 5 × EPSILON of 1.
+
+        Retail: Frame::IsValid @ 0x00534ED0 (acclient.c:357024)
+        """
+        values = (self.origin.x, self.origin.y, self.origin.z, self.qw, self.qx, self.qy, self.qz)
+        if any(math.isnan(v) for v in values):
+            return False
+        norm = self.qw * self.qw + self.qx * self.qx + self.qy * self.qy + self.qz * self.qz
+        return not (math.isnan(norm) or abs(norm - 1.0) > EPSILON * 5.0)
+
+    def is_valid_except_for_heading(self) -> bool:
+        """True when the origin is a number but some quaternion component is NaN.
+
+        The name is retail's: the frame is sound "except for its heading".
+
+        Retail: Frame::IsValidExceptForHeading @ 0x00534FE0 (acclient.c:357050)
+        """
+        origin_ok = not any(math.isnan(v) for v in (self.origin.x, self.origin.y, self.origin.z))
+        return origin_ok and any(math.isnan(v) for v in (self.qw, self.qx, self.qy, self.qz))
+
+    # -- rotation --------------------------------------------------------------------------
+
+    def set_rotate(self, qw: float, qx: float, qy: float, qz: float) -> None:
+        """Normalise and store a quaternion; if the frame is then invalid, restore the old one.
+
+        On success the matrix is re-cached; on failure neither the quaternion
+        nor the matrix changes (note that a NaN origin also makes the frame
+        invalid, so a frame with a NaN origin keeps its rotation).
+
+        Retail: Frame::set_rotate @ 0x00535080 (acclient.c:357062)
+        """
+        old = (self.qw, self.qx, self.qy, self.qz)
+        norm2 = qw * qw + qx * qx + qy * qy + qz * qz
+        inv = 1.0 / math.sqrt(norm2) if norm2 > 0.0 else math.nan
+        self.qw, self.qx, self.qy, self.qz = qw * inv, qx * inv, qy * inv, qz * inv
+        if self.is_valid():
+            self.cache()
+        else:
+            self.qw, self.qx, self.qy, self.qz = old
+
+    def grotate(self, w: Vector3) -> None:
+        """Rotate by the global axis-angle vector ``w`` (radians); ignored when |w| < EPSILON.
+
+        The rotation ``(cos θ/2, sin θ/2 · ŵ)`` multiplies the quaternion from the left.
+
+        Retail: Frame::grotate @ 0x005357A0 (acclient.c:357421)
+        """
+        theta2 = w.x * w.x + w.y * w.y + w.z * w.z
+        if theta2 < EPSILON * EPSILON:
+            return
+        theta = math.sqrt(theta2)
+        inv = 1.0 / theta
+        s = math.sin(theta * 0.5)
+        c = math.cos(theta * 0.5)
+        f, g, h = s * w.x * inv, s * w.y * inv, s * w.z * inv
+        qw, qx, qy, qz = self.qw, self.qx, self.qy, self.qz
+        self.set_rotate(
+            c * qw - f * qx - g * qy - h * qz,
+            c * qx + g * qz + f * qw - h * qy,
+            c * qy - f * qz + h * qx + g * qw,
+            f * qy + c * qz - g * qx + h * qw,
+        )
+
+    def rotate(self, w: Vector3) -> None:
+        """Rotate by the local axis-angle vector ``w``: convert it to global, then grotate.
+
+        Retail: Frame::rotate @ 0x004525B0 (acclient.c:143690)
+        """
+        self.grotate(self.localtoglobalvec(w))
+
+    def interpolate_rotation(self, start: Frame, end: Frame, t: float) -> None:
+        """Slerp from ``start`` to ``end`` by ``t`` along the shorter arc.
+
+        Falls back to a linear blend when the rotations are within EPSILON
+        of each other or when a slerp weight leaves [0, 1].
+
+        Retail: Frame::interpolate_rotation @ 0x00535390 (acclient.c:357257)
+        """
+        cosom = start.qx * end.qx + start.qy * end.qy + start.qz * end.qz + start.qw * end.qw
+        to = (end.qw, end.qx, end.qy, end.qz)
+        if cosom < 0.0:
+            cosom = -cosom
+            to = (-end.qw, -end.qx, -end.qy, -end.qz)
+        if 1.0 - cosom <= EPSILON:
+            scale0, scale1 = 1.0 - t, t
+        else:
+            omega = math.acos(cosom)
+            inv_sin = 1.0 / math.sin(omega)
+            scale0 = inv_sin * math.sin(omega * (1.0 - t))
+            scale1 = math.sin(t * omega) * inv_sin
+            if not (0.0 <= scale0 <= 1.0 and 0.0 <= scale1 <= 1.0):
+                scale0, scale1 = 1.0 - t, t
+        self.set_rotate(
+            scale0 * start.qw + scale1 * to[0],
+            start.qx * scale0 + to[1] * scale1,
+            start.qy * scale0 + to[2] * scale1,
+            to[3] * scale1 + start.qz * scale0,
+        )
+
+    def interpolate_origin(self, start: Frame, end: Frame, t: float) -> None:
+        """Blend the origins: ``(1 - t) · start + t · end``.
+
+        Retail: Frame::interpolate_origin @ 0x005352F0 (acclient.c:357228)
+        """
+        u = 1.0 - t
+        self.origin.x = t * end.origin.x + u * start.origin.x
+        self.origin.y = u * start.origin.y + t * end.origin.y
+        self.origin.z = u * start.origin.z + t * end.origin.z
+
+    # -- composition -----------------------------------------------------------------------
+
+    def combine(self, f1: Frame, f2: Frame) -> None:
+        """Set this frame to ``f1 ∘ f2``: f2 expressed in f1's space, taken to global.
+
+        ``origin = f1.origin + f1.m · f2.origin``; ``q = q1 · q2``. Reads f1's
+        cached matrix, so f1 must be cached. ``self`` may be ``f1`` or ``f2``.
+
+        Retail: Frame::combine @ 0x005122E0 (acclient.c:319448)
+        """
+        m = f1.m
+        o = f2.origin
+        x = m[6] * o.z + m[0] * o.x + m[3] * o.y + f1.origin.x
+        y = m[7] * o.z + m[1] * o.x + m[4] * o.y + f1.origin.y
+        z = m[8] * o.z + m[2] * o.x + m[5] * o.y + f1.origin.z
+        w1, x1, y1, z1 = f1.qw, f1.qx, f1.qy, f1.qz
+        w2, x2, y2, z2 = f2.qw, f2.qx, f2.qy, f2.qz
+        self.origin.x, self.origin.y, self.origin.z = x, y, z
+        self.set_rotate(
+            w1 * w2 - x2 * x1 - y2 * y1 - z2 * z1,
+            w1 * x2 + z2 * y1 + w2 * x1 - y2 * z1,
+            y2 * w1 - z2 * x1 + z1 * x2 + y1 * w2,
+            y2 * x1 + z2 * w1 - y1 * x2 + z1 * w2,
+        )
+
+    def subtract1(self, f1: Frame, f2: Frame) -> None:
+        """Set this frame to X with ``X ∘ f2 = f1`` (undo a local offset f2 from f1).
+
+        ``q = q1 · conj(q2)``, then ``origin = f1.origin - m_X · f2.origin``.
+
+        Retail: Frame::subtract1 @ 0x00535520 (acclient.c:357321)
+        """
+        w1, x1, y1, z1 = f1.qw, f1.qx, f1.qy, f1.qz
+        w2, x2, y2, z2 = f2.qw, f2.qx, f2.qy, f2.qz
+        ox, oy, oz = -f2.origin.x, -f2.origin.y, -f2.origin.z
+        base = f1.origin.copy()
+        self.set_rotate(
+            y1 * y2 + x2 * x1 + w1 * w2 + z2 * z1,
+            x1 * w2 - x2 * w1 - y1 * z2 + z1 * y2,
+            y1 * w2 - w1 * y2 + z2 * x1 - x2 * z1,
+            z1 * w2 - (w1 * z2 + y2 * x1) + y1 * x2,
+        )
+        m = self.m
+        self.origin.x = oz * m[6] + ox * m[0] + oy * m[3] + base.x
+        self.origin.y = oz * m[7] + ox * m[1] + oy * m[4] + base.y
+        self.origin.z = oz * m[8] + ox * m[2] + oy * m[5] + base.z
+
+    def subtract2(self, f1: Frame, f2: Frame) -> None:
+        """Set this frame to X with ``f2 ∘ X = f1`` (f1 expressed in f2's space).
+
+        ``origin = f2.globaltolocal(f1.origin)``; ``q = conj(q2) · q1``.
+
+        Retail: Frame::subtract2 @ 0x00535650 (acclient.c:357364)
+        """
+        local = f2.globaltolocal(f1.origin)
+        w1, x1, y1, z1 = f1.qw, f1.qx, f1.qy, f1.qz
+        w2, x2, y2, z2 = f2.qw, f2.qx, f2.qy, f2.qz
+        self.origin.set(local)
+        self.set_rotate(
+            w1 * w2 + y2 * y1 + x1 * x2 + z1 * z2,
+            x1 * w2 - w1 * x2 - y2 * z1 + y1 * z2,
+            z1 * x2 + w2 * y1 - y2 * w1 - x1 * z2,
+            z1 * w2 - y1 * x2 + x1 * y2 - w1 * z2,
+        )
+
+    # -- points and vectors ----------------------------------------------------------------
+
+    def localtoglobalvec(self, v: Vector3) -> Vector3:
+        """Rotate a local vector into global space.
+
+        Retail: Frame::localtoglobalvec @ 0x004524F0 (acclient.c:143658)
+        """
+        m = self.m
+        return Vector3(
+            m[6] * v.z + m[0] * v.x + m[3] * v.y,
+            m[7] * v.z + m[1] * v.x + m[4] * v.y,
+            m[8] * v.z + m[2] * v.x + m[5] * v.y,
+        )
+
+    def globaltolocalvec(self, v: Vector3) -> Vector3:
+        """Rotate a global vector into local space (the transposed matrix).
+
+        Retail: Frame::globaltolocalvec @ 0x00452550 (acclient.c:143674)
+        """
+        m = self.m
+        return Vector3(
+            m[2] * v.z + m[0] * v.x + m[1] * v.y,
+            m[5] * v.z + m[3] * v.x + m[4] * v.y,
+            m[8] * v.z + m[6] * v.x + m[7] * v.y,
+        )
+
+    def localtoglobal(self, p: Vector3) -> Vector3:
+        """Take a local point to global space.
+
+        Retail: Frame::localtoglobal @ 0x00452620 (acclient.c:143701)
+        """
+        return self.localtoglobalvec(p) + self.origin
+
+    def globaltolocal(self, p: Vector3) -> Vector3:
+        """Take a global point to local space.
+
+        Retail: Frame::globaltolocal @ 0x00452680 (acclient.c:143717)
+        """
+        return self.globaltolocalvec(p - self.origin)
+
+    # -- headings --------------------------------------------------------------------------
+
+    def get_vector_heading(self) -> Vector3:
+        """The local +y axis (the facing) in global coordinates.
+
+        Retail: Frame::get_vector_heading @ 0x00535720 (acclient.c:357393)
+        """
+        return Vector3(self.m[3], self.m[4], self.m[5])
+
+    def get_heading(self) -> float:
+        """The compass heading of the facing, in degrees [0, 360).
+
+        Retail: Frame::get_heading @ 0x00535760 (acclient.c:357409)
+        """
+        return compass_heading(self.m[3], self.m[4])
+
+    def set_vector_heading(self, heading: Vector3) -> None:
+        """Face along ``heading``: yaw from its horizontal bearing, pitch from its z.
+
+        Leaves the rotation untouched when ``heading`` is shorter than EPSILON.
+        The new rotation replaces the old one entirely (any roll is lost).
+
+        Retail: Frame::set_vector_heading @ 0x00535DB0 (acclient.c:357667)
+        """
+        normal = heading.copy()
+        if normal.normalize_check_small():
+            return
+        yaw = -math.radians(compass_heading(normal.x, normal.y))
+        pitch = math.asin(normal.z)
+        self.euler_set_rotate(pitch, 0.0, yaw)
+
+    def set_heading(self, degrees: float) -> None:
+        """Face compass ``degrees``, keeping the facing's current z as the pitch input.
+
+        Retail: Frame::set_heading @ 0x00535E40 (acclient.c:357691)
+        """
+        rad = math.radians(degrees)
+        self.set_vector_heading(Vector3(math.sin(rad), math.cos(rad), self.m[5]))
+
+    def euler_set_rotate(self, x: float, y: float, z: float) -> None:
+        """Set the rotation from static-axis Euler angles applied x, then y, then z (radians).
+
+        Retail always calls this with order 0 (Shoemake's ``EulOrdXYZs``:
+        i=0, j=1, k=2, no repetition, even parity, static frame), the only
+        order ported here.
+
+        Retail: Frame::euler_set_rotate @ 0x00535BF0 (acclient.c:357588)
+        """
+        ci, si = math.cos(x * 0.5), math.sin(x * 0.5)
+        cj, sj = math.cos(y * 0.5), math.sin(y * 0.5)
+        ch, sh = math.cos(z * 0.5), math.sin(z * 0.5)
+        cc, cs, sc, ss = ci * ch, ci * sh, si * ch, si * sh
+        self.set_rotate(
+            ss * sj + cc * cj,
+            sc * cj - cs * sj,
+            cc * sj + ss * cj,
+            cs * cj - sc * sj,
+        )

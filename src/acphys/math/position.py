@@ -1,0 +1,43 @@
+"""``Position``: a cell id and a frame local to that cell's landblock."""
+
+from __future__ import annotations
+
+from acphys.math.cell_id import format_cell_id, get_block_offset
+from acphys.math.frame import Frame
+from acphys.math.vector import Vector3
+
+
+class Position:
+    """Retail ``Position`` (acclient.h:30658): ``objcell_id`` plus a landblock-local frame."""
+
+    __slots__ = ("frame", "objcell_id")
+
+    def __init__(self, objcell_id: int = 0, frame: Frame | None = None) -> None:
+        self.objcell_id = objcell_id
+        self.frame = frame.copy() if frame is not None else Frame()
+
+    def copy(self) -> Position:
+        return Position(self.objcell_id, self.frame)
+
+    def __repr__(self) -> str:
+        return f"Position({format_cell_id(self.objcell_id)}, {self.frame!r})"
+
+    @property
+    def origin(self) -> Vector3:
+        return self.frame.origin
+
+    def get_offset(self, other: Position) -> Vector3:
+        """The vector from this position's origin to ``other``'s, across landblocks.
+
+        Retail: Position::get_offset @ 0x00509F60 (acclient.c:311690)
+        """
+        block = get_block_offset(self.objcell_id, other.objcell_id)
+        return block + other.frame.origin - self.frame.origin
+
+    def localtoglobal_offset(self, other: Position, v: Vector3) -> Vector3:
+        """The vector from this origin to the point ``v`` local to ``other``'s frame.
+
+        Retail: Position::get_offset @ 0x0050D920 (acclient.c:314676)
+        """
+        block = get_block_offset(self.objcell_id, other.objcell_id)
+        return block + other.frame.localtoglobal(v) - self.frame.origin

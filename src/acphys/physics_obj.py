@@ -1,0 +1,751 @@
+"""``CPhysicsObj``: a physics body and its per-tick update, in retail order.
+
+The tick, top to bottom, as :meth:`PhysicsObj.update_object` runs it:
+
+1. ``update_object`` gates the body (parent, cell, frozen), applies the
+   96-m activity cull, and slices the elapsed time into quanta.
+2. ``update_object_internal`` runs one quantum on an active body:
+   ``update_position_internal`` builds the candidate frame (root motion,
+   position-manager offset, ``Frame::combine``, ``update_physics_internal``,
+   hooks); the candidate is swept by ``transition`` and committed by
+   ``set_position_internal`` (or kept in place by ``set_frame``); then the
+   managers tick in retail order.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from acphys.attachments import (
+    AnimHook,
+    DetectionManager,
+    MovementManager,
+    ParticleManager,
+    PhysicsObjHook,
+    PositionManager,
+    ScriptManager,
+    TargetManager,
+)
+from acphys.constants import (
+    ACTIVITY_DISTANCE,
+    DEFAULT_ELASTICITY,
+    DEFAULT_FRICTION,
+    EPSILON,
+    FLOOR_Z,
+    GRAVITY,
+    HUGE_QUANTUM,
+    MAX_ELASTICITY,
+    MAX_QUANTUM,
+    MAX_VELOCITY,
+    MIN_QUANTUM,
+    SLEDDING_FAST_SPEED2,
+    SLEDDING_FRICTION,
+    SLEDDING_STEEP_Z,
+    SLEDDING_STOP_SPEED2,
+    SMALL_VELOCITY,
+)
+from acphys.flags import DEFAULT_PHYSICS_STATE, STATIONARY_MASK, PhysicsState, TransientState
+from acphys.geometry.plane import Plane
+from acphys.geometry.sphere import DUMMY_SPHERE
+from acphys.hooks import FPHook, HookType
+from acphys.math.cell_id import adjust_to_outside, is_outdoor
+from acphys.math.frame import Frame
+from acphys.math.position import Position
+from acphys.math.vector import Vector3
+from acphys.part_array import PartArray
+from acphys.transition.collision_info import CollisionInfo
+from acphys.transition.transition import Transition
+
+if TYPE_CHECKING:
+    from acphys.world.world import ObjCell, World
+
+PS = PhysicsState
+TS = TransientState
+
+#: Called after every ``update_object_internal`` with the body and the quantum integrated.
+StepObserver = Callable[["PhysicsObj", float], None]
+
+
+class PhysicsObj:
+    """Retail ``CPhysicsObj`` (acclient.h:30689): one body, its state and its tick.
+
+    ``velocity`` is ``m_velocityVector`` (what physics integrates),
+    ``cached_velocity`` is the displacement actually achieved last quantum
+    divided by the quantum, and root motion never touches either.
+    """
+
+    def __init__(self, world: World, name: str = "", part_array: PartArray | None = None) -> None:
+        """Retail defaults: CPhysicsObj::CPhysicsObj @ 0x005123F0 (acclient.c:319489)."""
+        self.world = world
+        self.name = name
+        self.part_array = part_array
+        self.parent: PhysicsObj | None = None
+
+        self.state: PhysicsState = DEFAULT_PHYSICS_STATE
+        self.transient_state: TransientState = TS(0)
+        self.position = Position()
+        self.cell: ObjCell | None = None
+
+        self.velocity = Vector3()
+        self.acceleration = Vector3()
+        self.omega = Vector3()
+        self.cached_velocity = Vector3()
+
+        self.friction = DEFAULT_FRICTION
+        self.elasticity = DEFAULT_ELASTICITY
+        self.scale = 1.0
+        self.translucency = 0.0
+        self.update_time = 0.0
+        self.jumped_this_frame = False
+        self.colliding_with_environment = False
+
+        self.contact_plane = Plane()
+        self.contact_plane_cell_id = 0
+        self.sliding_normal = Vector3()
+
+        self.player_vector = Vector3(0.0, 0.0, 1.0)
+        self.player_distance = math.inf
+
+        self.movement_manager: MovementManager | None = None
+        self.position_manager: PositionManager | None = None
+        self.detection_manager: DetectionManager | None = None
+        self.target_manager: TargetManager | None = None
+        self.particle_manager: ParticleManager | None = None
+        self.script_manager: ScriptManager | None = None
+
+        #: ``hooks``: the PhysicsObjHook list, newest first.
+        self.hooks: list[PhysicsObjHook] = []
+        #: ``anim_hooks``: one-shot hooks queued by the sequence, fired by ``process_hooks``.
+        self.anim_hooks: list[AnimHook] = []
+
+        #: What happened during the current step ("hit_ground", "collision:environment", ...).
+        self.step_events: list[str] = []
+        #: Called after every physics step; the simulation's tracer hangs here.
+        self.observer: StepObserver | None = None
+
+    def __repr__(self) -> str:
+        return f"PhysicsObj({self.name!r}, {self.position!r})"
+
+    # -- the clock: update_object --------------------------------------------------------
+
+    def update_object(self) -> None:
+        """Bring the body up to ``world.cur_time``, one or more quanta at a time.
+
+        Gated off (and deactivated) when parented, cell-less or ``FROZEN``.
+        Measured from the player, a body beyond 96 m is deactivated and one
+        within is activated. The elapsed time since ``update_time`` is then:
+        at most EPSILON, a resync; above 2 s, dropped; at most MAX_QUANTUM,
+        one step; otherwise MAX_QUANTUM steps while more than MAX_QUANTUM
+        remains, then the remainder only if it exceeds MIN_QUANTUM.
+        ``update_time`` advances only by the time integrated.
+
+        Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
+        """
+        world = self.world
+        if self.parent is not None or self.cell is None or self.state & PS.FROZEN:
+            self.transient_state &= ~TS.ACTIVE
+            return
+        player = world.player
+        if player is not None:
+            self.player_vector = player.position.get_offset(self.position)
+            self.player_distance = self.player_vector.length()
+            if self.player_distance > ACTIVITY_DISTANCE and world.activity_cull:
+                self.transient_state &= ~TS.ACTIVE
+            else:
+                self.set_active(True)
+
+        quantum = world.cur_time - self.update_time
+        world.physics_time = self.update_time
+        if quantum <= EPSILON or quantum > HUGE_QUANTUM:
+            self.update_time = world.cur_time
+            return
+        if quantum > MAX_QUANTUM:
+            while True:
+                self._run_quantum(MAX_QUANTUM)
+                quantum -= MAX_QUANTUM
+                if quantum <= MAX_QUANTUM:
+                    break
+            if quantum > MIN_QUANTUM:
+                self._run_quantum(quantum)
+        else:
+            self._run_quantum(quantum)
+        self.update_time = world.physics_time
+
+    def _run_quantum(self, quantum: float) -> None:
+        """Advance the physics timer by ``quantum`` and run one step (update_object's slice)."""
+        self.world.physics_time += quantum
+        self.update_object_internal(quantum)
+        if self.observer is not None:
+            self.observer(self, quantum)
+
+    # -- one step: update_object_internal --------------------------------------------------
+
+    def update_object_internal(self, quantum: float) -> None:
+        """One physics step: candidate frame, sweep, commit, then the managers.
+
+        An inactive body only ticks its particles and scripts.
+
+        Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
+        """
+        self.step_events.clear()
+        if self.transient_state & TS.ACTIVE:
+            if self.cell is None:
+                return
+            if self.transient_state & TS.CHECK_ETHEREAL:
+                self.set_ethereal(False, send_event=False)
+            self.jumped_this_frame = False
+
+            new_pos = Position(self.position.objcell_id)
+            self.update_position_internal(quantum, new_pos.frame)
+
+            if self.part_array is not None and self.part_array.get_num_sphere():
+                if new_pos.frame.origin == self.position.frame.origin:
+                    self._keep_origin(new_pos.frame)
+                else:
+                    self._align_heading(new_pos.frame)
+                    transit = self.transition(self.position, new_pos)
+                    if transit is not None:
+                        offset = self.position.get_offset(transit.sphere_path.curr_pos)
+                        self.cached_velocity = offset / quantum
+                        self.set_position_internal(transit)
+                    else:
+                        self._keep_origin(new_pos.frame)
+            else:
+                if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
+                    self.transient_state &= ~TS.ACTIVE
+                self._keep_origin(new_pos.frame)
+
+            if self.detection_manager is not None:
+                self.detection_manager.check_detection()
+            if self.target_manager is not None:
+                self.target_manager.handle_targetting()
+            if self.movement_manager is not None:
+                self.movement_manager.use_time()
+            if self.part_array is not None:
+                self.part_array.handle_movement()
+            if self.position_manager is not None:
+                self.position_manager.use_time()
+        if self.particle_manager is not None:
+            self.particle_manager.update_particles()
+        if self.script_manager is not None:
+            self.script_manager.update_scripts()
+
+    def _keep_origin(self, candidate: Frame) -> None:
+        """Commit only the candidate's rotation and zero ``cached_velocity``.
+
+        The no-sweep branches of UpdateObjectInternal: unchanged origin, no
+        spheres, or a failed transition.
+        """
+        candidate.origin.set(self.position.frame.origin)
+        self.set_frame(candidate)
+        self.cached_velocity = Vector3()
+
+    def _align_heading(self, candidate: Frame) -> None:
+        """``ALIGNPATH``: face the path; else ``SLEDDING`` with velocity: face the velocity.
+
+        Part of UpdateObjectInternal (acclient.c:322800-322810).
+        """
+        if self.state & PS.ALIGN_PATH:
+            candidate.set_vector_heading((candidate.origin - self.position.frame.origin).normalized())
+        elif self.state & PS.SLEDDING and not self.velocity.is_zero():
+            candidate.set_heading(self.velocity.get_heading())
+
+    # -- the candidate frame ---------------------------------------------------------------
+
+    def update_position_internal(self, quantum: float, new_frame: Frame) -> None:
+        """Build the candidate frame: root motion, manager offset, combine, integrate, hooks.
+
+        Root motion is scaled by ``scale`` on walkable ground and by 0
+        otherwise (its rotation always applies). ``HIDDEN`` skips root motion
+        and integration. ``new_frame`` becomes ``position.frame ∘ offset``.
+
+        Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988)
+        """
+        offset = Frame()
+        if not self.state & PS.HIDDEN:
+            if self.part_array is not None:
+                self.part_array.update(quantum, offset)
+            factor = self.scale if self.transient_state & TS.ON_WALKABLE else 0.0
+            offset.origin.x *= factor
+            offset.origin.y *= factor
+            offset.origin.z *= factor
+        if self.position_manager is not None:
+            self.position_manager.adjust_offset(offset, quantum)
+        new_frame.combine(self.position.frame, offset)
+        if not self.state & PS.HIDDEN:
+            self.update_physics_internal(quantum, new_frame)
+        self.process_hooks()
+
+    def update_physics_internal(self, quantum: float, frame: Frame) -> None:
+        """Euler-integrate velocity, acceleration and omega into ``frame``.
+
+        With any velocity: clamp to 50 m/s, apply friction, zero it when the
+        (clamped, pre-friction) speed is within the 0.25 m/s deadband, then
+        move by ``v·dt + a·dt²/2``. With none, a body with no movement
+        manager on walkable ground is deactivated. Always ``v += a·dt`` and
+        ``frame.grotate(omega·dt)``.
+
+        Retail: CPhysicsObj::UpdatePhysicsInternal @ 0x00510700 (acclient.c:317700)
+        """
+        v = self.velocity
+        a = self.acceleration
+        velocity_mag2 = v.x * v.x + v.y * v.y + v.z * v.z
+        if velocity_mag2 <= 0.0:
+            if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
+                self.transient_state &= ~TS.ACTIVE
+        else:
+            if velocity_mag2 > MAX_VELOCITY * MAX_VELOCITY:
+                v = self.velocity = v.normalized() * MAX_VELOCITY
+                velocity_mag2 = MAX_VELOCITY * MAX_VELOCITY
+            self.calc_friction(quantum, velocity_mag2)
+            v = self.velocity
+            if velocity_mag2 - SMALL_VELOCITY * SMALL_VELOCITY < EPSILON:
+                v = self.velocity = Vector3()
+            origin = frame.origin
+            origin.x = (quantum * v.x + a.x * 0.5 * quantum * quantum) + origin.x
+            origin.y = (quantum * v.y + a.y * 0.5 * quantum * quantum) + origin.y
+            origin.z = (quantum * v.z + a.z * 0.5 * quantum * quantum) + origin.z
+        v.x += quantum * a.x
+        v.y += quantum * a.y
+        v.z += quantum * a.z
+        frame.grotate(self.omega * quantum)
+
+    def calc_friction(self, quantum: float, velocity_mag2: float) -> None:
+        """Ground friction: on walkable ground, unless moving away from the contact plane.
+
+        Velocity with a normal component of 0.25 m/s or more is left alone.
+        Otherwise the normal component is removed and the rest scaled by
+        ``(1 - f)^dt``. ``f`` is the body's friction; a ``SLEDDING`` body
+        stops dead under 1.25 m/s (f = 1) and, at 2.5 m/s or more on a
+        contact plane steeper than 10°, slides with f = 0.2.
+
+        Retail: CPhysicsObj::calc_friction @ 0x0050EE70 (acclient.c:316090)
+        """
+        if not self.transient_state & TS.ON_WALKABLE:
+            return
+        n = self.contact_plane.N
+        v = self.velocity
+        normal_speed = v.x * n.x + v.y * n.y + v.z * n.z
+        if normal_speed >= 0.25:
+            return
+        v.x -= normal_speed * n.x
+        v.y -= normal_speed * n.y
+        v.z -= normal_speed * n.z
+        friction = self.friction
+        if self.state & PS.SLEDDING:
+            if velocity_mag2 < SLEDDING_STOP_SPEED2:
+                friction = 1.0
+            elif velocity_mag2 >= SLEDDING_FAST_SPEED2 and n.z < SLEDDING_STEEP_Z:
+                friction = SLEDDING_FRICTION
+        factor = math.pow(1.0 - friction, quantum)
+        v.x *= factor
+        v.y *= factor
+        v.z *= factor
+
+    def calc_acceleration(self) -> None:
+        """Standing on walkable ground (and not sledding): no acceleration and no omega.
+
+        Otherwise gravity when ``GRAVITY`` is set, else nothing.
+
+        Retail: CPhysicsObj::calc_acceleration @ 0x00510950 (acclient.c:317786)
+        """
+        ts = self.transient_state
+        if ts & TS.CONTACT and ts & TS.ON_WALKABLE and not self.state & PS.SLEDDING:
+            self.acceleration = Vector3()
+            self.omega = Vector3()
+        elif self.state & PS.GRAVITY:
+            self.acceleration = Vector3(0.0, 0.0, GRAVITY)
+        else:
+            self.acceleration = Vector3()
+
+    def set_on_walkable(self, is_on_walkable: bool) -> None:
+        """Set ``ON_WALKABLE``; tell the movement manager on landing and leaving; recompute acceleration.
+
+        Retail: CPhysicsObj::set_on_walkable @ 0x00511310 (acclient.c:318501)
+        """
+        was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+        if is_on_walkable:
+            self.transient_state |= TS.ON_WALKABLE
+        else:
+            self.transient_state &= ~TS.ON_WALKABLE
+        if was_on_walkable and not is_on_walkable:
+            self._leave_ground()
+        elif not was_on_walkable and is_on_walkable:
+            self.step_events.append("hit_ground")
+            if self.movement_manager is not None:
+                self.movement_manager.hit_ground()
+        self.calc_acceleration()
+
+    def _leave_ground(self) -> None:
+        """Record leaving walkable ground and tell the movement manager, if any."""
+        self.step_events.append("leave_ground")
+        if self.movement_manager is not None:
+            self.movement_manager.leave_ground()
+
+    # -- hooks -----------------------------------------------------------------------------
+
+    def process_hooks(self) -> None:
+        """Run every PhysicsObjHook (dropping those that finish), then fire and clear the anim hooks.
+
+        Retail: CPhysicsObj::process_hooks @ 0x00511550 (acclient.c:318640)
+        """
+        for hook in list(self.hooks):
+            if hook.execute(self):
+                self.hooks.remove(hook)
+        index = 0
+        while index < len(self.anim_hooks):
+            self.anim_hooks[index].execute(self)
+            index += 1
+        self.anim_hooks.clear()
+
+    def process_fp_hook(self, hook_type: HookType, value: float, user_data: int) -> None:
+        """Apply one tween value: scale and translucency are the body's; part-level ones wait for parts.
+
+        Retail: CPhysicsObj::process_fp_hook @ 0x005135C0 (acclient.c:320571)
+        """
+        if hook_type == HookType.SCALE:
+            self.scale = value
+        elif hook_type == HookType.TRANSLUCENCY:
+            self.translucency = value
+
+    def set_scale(self, new_scale: float, delta: float = 0.0) -> None:
+        """Scale the body now, or tween to ``new_scale`` over ``delta`` seconds (≥ EPSILON).
+
+        Retail: CPhysicsObj::SetScale @ 0x005136A0 (acclient.c:320621)
+        """
+        if delta >= EPSILON:
+            hook = FPHook(HookType.SCALE, self.world.physics_time, delta, self.scale, new_scale)
+            self.hooks.insert(0, hook)
+        else:
+            self.scale = new_scale
+
+    # -- the commit ------------------------------------------------------------------------
+
+    def set_frame(self, frame: Frame) -> None:
+        """Make ``frame`` the body's frame.
+
+        A frame whose origin is sound but whose quaternion has a NaN is
+        committed with an all-zero quaternion (the next ``combine`` then
+        falls back to the identity rotation).
+
+        Retail: CPhysicsObj::set_frame @ 0x00514090 (acclient.c:321327)
+        """
+        committed = frame.copy()
+        if not committed.is_valid() and committed.is_valid_except_for_heading():
+            committed.qw = committed.qx = committed.qy = committed.qz = 0.0
+        self.position.frame.assign(committed)
+
+    def transition(self, old_pos: Position, new_pos: Position, admin_move: bool = False) -> Transition | None:
+        """Sweep the body's spheres from ``old_pos`` to ``new_pos``; None when no valid position exists.
+
+        Seeds ``frames_stationary_fall`` from the STATIONARY bits
+        (STUCK → 3, STOP → 2, FALL → 1). ``admin_move`` is read by the
+        object info of the collision-sweep issue.
+
+        Retail: CPhysicsObj::transition @ 0x00512DC0 (acclient.c:320060)
+        """
+        transit = Transition(self.world, self)
+        if self.part_array is not None and self.part_array.get_num_sphere():
+            transit.init_sphere(self.part_array.get_sphere(), self.scale)
+        else:
+            transit.init_sphere([DUMMY_SPHERE], 1.0)
+        transit.init_path(self.cell, old_pos, new_pos)
+        ts = self.transient_state
+        if ts & TS.STATIONARY_STUCK:
+            transit.collision_info.frames_stationary_fall = 3
+        elif ts & TS.STATIONARY_STOP:
+            transit.collision_info.frames_stationary_fall = 2
+        elif ts & TS.STATIONARY_FALL:
+            transit.collision_info.frames_stationary_fall = 1
+        return transit if transit.find_valid_position() else None
+
+    def set_position_internal(self, transit: Transition) -> None:
+        """Commit a successful sweep: cell, frame, contact, walkable, water, sliding, collisions.
+
+        With no cell at the end of the path the body goes to the lost cell
+        and is deactivated.
+
+        Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
+        """
+        prev_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+        prev_contact = bool(self.transient_state & TS.CONTACT)
+        path = transit.sphere_path
+        info = transit.collision_info
+        if path.curr_cell is None:
+            self.store_position(path.curr_pos)
+            self.transient_state &= ~TS.ACTIVE
+            return
+        if self.cell is path.curr_cell:
+            self.position.objcell_id = path.curr_pos.objcell_id
+        else:
+            self.change_cell(path.curr_cell)
+        self.set_frame(path.curr_pos.frame)
+
+        self.contact_plane_cell_id = info.contact_plane_cell_id
+        self.contact_plane = info.contact_plane.copy()
+        self._set_transient(TS.CONTACT, info.contact_plane_valid)
+        self.calc_acceleration()
+        self._set_transient(TS.WATER_CONTACT, info.contact_plane_is_water)
+        if self.transient_state & TS.CONTACT:
+            self.set_on_walkable(self.contact_plane.N.z >= FLOOR_Z)
+        else:
+            was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+            self.transient_state &= ~TS.ON_WALKABLE
+            if was_on_walkable:
+                self._leave_ground()
+            self.calc_acceleration()
+
+        self.sliding_normal = info.sliding_normal.copy()
+        self._set_transient(TS.SLIDING, info.sliding_normal_valid)
+        self.handle_all_collisions(info, prev_contact, prev_on_walkable)
+
+    def _set_transient(self, flag: TransientState, on: bool) -> None:
+        if on:
+            self.transient_state |= flag
+        else:
+            self.transient_state &= ~flag
+
+    def handle_all_collisions(
+        self, collisions: CollisionInfo, prev_has_contact: bool, prev_on_walkable: bool
+    ) -> bool:
+        """Respond to what the sweep hit: report it, bounce or stop, and track stationary frames.
+
+        A bounce ``v -= (1 + e)(v·n) n`` (or a dead stop for ``INELASTIC``)
+        happens only with at most one stationary-fall frame, a valid
+        collision normal and ``v·n < 0``, and not when the body was and is on
+        walkable ground (unless sledding). Two or more stationary-fall frames
+        zero the velocity. A count of 1 or 2 then adds STATIONARY_FALL or
+        STATIONARY_STOP to the bits already set; 0 and 3 clear all three.
+        Landing on walkable ground reports as an environment collision.
+        Object-object collisions are tracked with the collision-sweep issue.
+
+        Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807)
+        """
+        on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+        apply_bounce = not (prev_on_walkable and on_walkable) or bool(self.state & PS.SLEDDING)
+        reported = False
+        if self.colliding_with_environment:
+            self.colliding_with_environment = collisions.collided_with_environment
+        elif collisions.collided_with_environment or (not prev_on_walkable and on_walkable):
+            reported = self.report_environment_collision(prev_has_contact)
+
+        frames = collisions.frames_stationary_fall
+        if frames <= 1:
+            if apply_bounce and collisions.collision_normal_valid:
+                if self.state & PS.INELASTIC:
+                    self.velocity = Vector3()
+                else:
+                    n = collisions.collision_normal
+                    v = self.velocity
+                    approach = v.z * n.z + v.y * n.y + n.x * v.x
+                    if approach < 0.0:
+                        impulse = -(approach * (self.elasticity + 1.0))
+                        v.x = impulse * n.x + v.x
+                        v.y = impulse * n.y + v.y
+                        v.z = impulse * n.z + v.z
+        else:
+            self.velocity = Vector3()
+        if frames in (0, 3):
+            self.transient_state &= ~STATIONARY_MASK
+        elif frames == 1:
+            self.transient_state |= TS.STATIONARY_FALL
+        elif frames == 2:
+            self.transient_state |= TS.STATIONARY_STOP
+        else:
+            self.transient_state |= TS.STATIONARY_STUCK
+        return reported
+
+    def report_environment_collision(self, prev_has_contact: bool) -> bool:
+        """Report the first frame of touching the environment; a missile stops aligning to its path.
+
+        The report (retail's weenie callback) is the step event
+        ``collision:environment``, made when ``REPORT_COLLISIONS`` is set.
+
+        Retail: CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
+        """
+        if self.colliding_with_environment:
+            return False
+        reported = bool(self.state & PS.REPORT_COLLISIONS)
+        if reported:
+            self.step_events.append("collision:environment")
+        self.colliding_with_environment = True
+        if self.state & PS.MISSILE:
+            self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
+        return reported
+
+    # -- cells and placement ---------------------------------------------------------------
+
+    def change_cell(self, new_cell: ObjCell | None) -> None:
+        """Leave the current cell and enter ``new_cell`` (or none).
+
+        Retail: CPhysicsObj::change_cell @ 0x00513390 (acclient.c:320421)
+        """
+        if self.cell is not None:
+            self.leave_cell()
+        if new_cell is not None:
+            self.enter_cell(new_cell)
+        else:
+            self.position.objcell_id = 0
+            self.cell = None
+
+    def enter_cell(self, new_cell: ObjCell) -> None:
+        """Join ``new_cell``'s object list and take its id (bodies without parts cannot).
+
+        Retail: CPhysicsObj::enter_cell @ 0x00510ED0 (acclient.c:318201)
+        """
+        if self.part_array is None:
+            return
+        new_cell.objects.append(self)
+        self.position.objcell_id = new_cell.id
+        self.cell = new_cell
+
+    def leave_cell(self) -> None:
+        """Retail: CPhysicsObj::leave_cell @ 0x00510F50 (acclient.c:318243)"""
+        if self.cell is not None:
+            self.cell.objects.remove(self)
+            self.cell = None
+
+    def store_position(self, pos: Position) -> None:
+        """Take ``pos`` as the position without touching cells, re-homing outdoor origins.
+
+        Retail: CPhysicsObj::store_position @ 0x005141A0 (acclient.c:321388)
+        """
+        stored = pos.copy()
+        if is_outdoor(stored.objcell_id):
+            stored.objcell_id = adjust_to_outside(stored.objcell_id, stored.frame.origin)
+        self.position.objcell_id = stored.objcell_id
+        self.set_frame(stored.frame)
+
+    def enter_world(self, pos: Position) -> bool:
+        """Place the body at ``pos`` in its cell and activate it (placement is not swept yet).
+
+        Retail: CPhysicsObj::enter_world @ 0x00516310 (acclient.c:323440)
+        """
+        if self.parent is not None:
+            return False
+        self.store_position(pos)
+        cell = self.world.get_cell(self.position.objcell_id)
+        if cell is None:
+            return False
+        self.change_cell(cell)
+        self.update_time = self.world.cur_time
+        self.set_active(True)
+        return True
+
+    # -- state setters ---------------------------------------------------------------------
+
+    def set_active(self, active: bool) -> bool:
+        """Activate (not a ``STATIC`` body; resyncs ``update_time`` if it was inactive) or deactivate.
+
+        Retail: CPhysicsObj::set_active @ 0x0050FC40 (acclient.c:316979)
+        """
+        if not active:
+            self.transient_state &= ~TS.ACTIVE
+            return True
+        if self.state & PS.STATIC:
+            return False
+        if not self.transient_state & TS.ACTIVE:
+            self.update_time = self.world.cur_time
+        self.transient_state |= TS.ACTIVE
+        return True
+
+    def set_velocity(self, new_velocity: Vector3) -> None:
+        """Set ``m_velocityVector`` (clamped to 50 m/s) and activate the body.
+
+        Retail: CPhysicsObj::set_velocity @ 0x005113F0 (acclient.c:318577)
+        """
+        _require_finite("velocity", new_velocity)
+        if new_velocity != self.velocity:
+            self.velocity = new_velocity.copy()
+            if self.velocity.length_squared() > MAX_VELOCITY * MAX_VELOCITY:
+                self.velocity = self.velocity.normalized() * MAX_VELOCITY
+            self.jumped_this_frame = True
+        self.set_active(True)
+
+    def set_local_velocity(self, local_velocity: Vector3) -> None:
+        """Set the velocity given in the body's own frame.
+
+        Retail: CPhysicsObj::set_local_velocity @ 0x005114D0 (acclient.c:318617)
+        """
+        self.set_velocity(self.position.frame.localtoglobalvec(local_velocity))
+
+    def set_omega(self, new_omega: Vector3) -> None:
+        """Retail: CPhysicsObj::set_omega @ 0x0050F6D0 (acclient.c:316612)"""
+        _require_finite("omega", new_omega)
+        self.omega = new_omega.copy()
+
+    def set_heading(self, degrees: float) -> None:
+        """Retail: CPhysicsObj::set_heading @ 0x00514160 (acclient.c:321376)"""
+        frame = self.position.frame.copy()
+        frame.set_heading(degrees)
+        self.set_frame(frame)
+
+    def set_elasticity(self, elasticity: float) -> None:
+        """Clamp to [0, 0.1].
+
+        Retail: CPhysicsObj::set_elasticity @ 0x0050FD40 (acclient.c:317060)
+        """
+        self.elasticity = min(max(elasticity, 0.0), MAX_ELASTICITY)
+
+    def set_state(self, new_state: PhysicsState) -> None:
+        """Replace ``state``; toggling ``HIDDEN`` goes through :meth:`set_hidden`.
+
+        Retail: CPhysicsObj::set_state @ 0x00514DD0 (acclient.c:322171)
+        """
+        changed = new_state ^ self.state
+        self.state = new_state
+        if changed & PS.HIDDEN:
+            self.set_hidden(bool(new_state & PS.HIDDEN))
+
+    def set_hidden(self, hidden: bool) -> None:
+        """Hide: stop reporting collisions and ignore them. Unhide: the reverse.
+
+        The retail hide scripts, child no-draw and cell visibility belong to
+        rendering and are not ported.
+
+        Retail: CPhysicsObj::set_hidden @ 0x00514C60 (acclient.c:322077)
+        """
+        if hidden:
+            self.state |= PS.HIDDEN
+            self.state &= ~PS.REPORT_COLLISIONS
+            self.state |= PS.IGNORE_COLLISIONS
+        else:
+            self.state &= ~(PS.HIDDEN | PS.IGNORE_COLLISIONS)
+            self.state |= PS.REPORT_COLLISIONS
+
+    def set_ethereal(self, ethereal: bool, send_event: bool = False) -> bool:
+        """Become ethereal, or try to become solid again.
+
+        Turning solid fails while the body overlaps another (it stays
+        ethereal and ``CHECK_ETHEREAL`` asks the next step to retry).
+
+        Retail: CPhysicsObj::set_ethereal @ 0x00511C40 (acclient.c:319046)
+        """
+        if ethereal:
+            self.state |= PS.ETHEREAL
+            self.transient_state &= ~TS.CHECK_ETHEREAL
+            return True
+        self.state &= ~PS.ETHEREAL
+        if self.parent is not None or self.cell is None or not self.ethereal_check_for_collisions():
+            self.transient_state &= ~TS.CHECK_ETHEREAL
+            return True
+        self.transient_state |= TS.CHECK_ETHEREAL
+        self.state |= PS.ETHEREAL
+        return False
+
+    def ethereal_check_for_collisions(self) -> bool:
+        """Whether the body overlaps another in any cell it shadows.
+
+        Bodies shadow into cells and collide with each other from the
+        collision-sweep issue on; until then there is nothing to overlap.
+
+        Retail: CPhysicsObj::ethereal_check_for_collisions @ 0x00510A40 (acclient.c:317831)
+        """
+        return False
+
+
+def _require_finite(what: str, v: Vector3) -> None:
+    if not v.is_finite():
+        raise ValueError(f"{what} must be finite, got ({v.x}, {v.y}, {v.z})")

@@ -1,0 +1,167 @@
+"""The clock: ``CPhysics::UseTime`` and a driver that advances it at a fixed rate."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from acphys.constants import MIN_QUANTUM
+from acphys.physics_obj import PhysicsObj
+from acphys.world.world import World
+
+
+class Physics:
+    """Retail ``CPhysics``: the set of bodies the clock updates, in insertion order."""
+
+    def __init__(self, world: World) -> None:
+        self.world = world
+        self.objects: list[PhysicsObj] = []
+        #: ``last_update``: when the bodies were last run.
+        self.last_update = world.cur_time
+
+    def add(self, obj: PhysicsObj) -> None:
+        self.objects.append(obj)
+
+    def use_time(self) -> bool:
+        """Run every body's ``update_object`` once at least MIN_QUANTUM has passed.
+
+        A clock that went backwards resyncs ``last_update``. Returns whether
+        the bodies ran. (Retail also animates static objects and texture
+        velocities here; neither moves a body.)
+
+        Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
+        """
+        elapsed = self.world.cur_time - self.last_update
+        if elapsed < 0.0:
+            self.last_update = self.world.cur_time
+            return False
+        if elapsed < MIN_QUANTUM:
+            return False
+        for obj in self.objects:
+            obj.update_object()
+        self.last_update = self.world.cur_time
+        return True
+
+
+#: A scheduled change to a body: applied when the driver clock reaches ``at``.
+@dataclass(order=True)
+class Event:
+    at: float
+    body: str = field(compare=False)
+    action: str = field(compare=False)
+    apply: Callable[[PhysicsObj], None] = field(compare=False, repr=False)
+    source: str = field(compare=False, default="")
+
+
+#: The driver clock ticks on a grid of 2^-30 s (about a nanosecond).
+CLOCK_GRID = 2.0**30
+
+
+def driver_tick_seconds(driver_hz: float) -> float:
+    """The driver's tick: 1/driver_hz rounded *up* to the 2^-30-s grid.
+
+    On that grid every tick time ``k · tick`` is exact in binary, so the time
+    between ticks never rounds below its nominal value: two ticks of a 60-Hz
+    driver always make MIN_QUANTUM and the bodies run at a steady 30 Hz.
+    (With ``k / 60`` the difference of two tick times rounds below 1/30 most
+    of the time and the bodies would mostly run every third tick.)
+    """
+    return math.ceil(CLOCK_GRID / driver_hz) / CLOCK_GRID
+
+
+class Simulation:
+    """A world, its bodies, a timeline of events, and a driver clock at ``driver_hz``.
+
+    Each driver tick ``k`` sets ``world.cur_time = k · tick`` (see
+    :func:`driver_tick_seconds`), applies the events due by then (in file
+    order), and calls :meth:`Physics.use_time`, which runs the bodies only
+    when at least 1/30 s has passed since they last ran.
+    """
+
+    def __init__(
+        self,
+        world: World,
+        bodies: Iterable[PhysicsObj] = (),
+        events: Iterable[Event] = (),
+        driver_hz: float = 60.0,
+        duration: float = 10.0,
+        name: str = "",
+    ) -> None:
+        if not driver_hz > 0.0:
+            raise ValueError(f"driver_hz must be positive, got {driver_hz}")
+        self.world = world
+        self.physics = Physics(world)
+        self.driver_hz = driver_hz
+        self.tick_seconds = driver_tick_seconds(driver_hz)
+        self.duration = duration
+        self.name = name
+        self.tick = 0
+        self._bodies: dict[str, PhysicsObj] = {}
+        for body in bodies:
+            self.add_body(body)
+        self._events = sorted(events)
+        self._next_event = 0
+
+    def add_body(self, body: PhysicsObj) -> None:
+        if body.name in self._bodies:
+            raise ValueError(f"two bodies are named {body.name!r}")
+        self._bodies[body.name] = body
+        self.physics.add(body)
+
+    def body(self, name: str) -> PhysicsObj:
+        try:
+            return self._bodies[name]
+        except KeyError:
+            raise KeyError(f"no body named {name!r} (bodies: {', '.join(self._bodies)})") from None
+
+    @property
+    def bodies(self) -> list[PhysicsObj]:
+        return list(self._bodies.values())
+
+    @property
+    def time(self) -> float:
+        return self.world.cur_time
+
+    def step(self) -> None:
+        """One driver tick: advance the clock, apply due events, run ``CPhysics::UseTime``."""
+        self.tick += 1
+        self.world.cur_time = self.tick * self.tick_seconds
+        while (
+            self._next_event < len(self._events) and self._events[self._next_event].at <= self.world.cur_time
+        ):
+            event = self._events[self._next_event]
+            event.apply(self.body(event.body))
+            self._next_event += 1
+        self.physics.use_time()
+
+    def run(
+        self,
+        until: float | None = None,
+        trace: str | Path | None = None,
+        progress: Callable[[float, float], Any] | None = None,
+    ) -> None:
+        """Run the driver until ``until`` seconds (default: the duration), writing a trace if asked.
+
+        ``progress(now, end)`` is called after every tick when given.
+        """
+        end = self.duration if until is None else until
+        if trace is None:
+            self._run_until(end, progress)
+            return
+        from acphys.trace import TraceWriter
+
+        with TraceWriter(trace) as writer:
+            writer.attach(self.bodies)
+            try:
+                self._run_until(end, progress)
+            finally:
+                writer.detach(self.bodies)
+
+    def _run_until(self, end: float, progress: Callable[[float, float], Any] | None) -> None:
+        while self.world.cur_time < end:
+            self.step()
+            if progress is not None:
+                progress(self.world.cur_time, end)

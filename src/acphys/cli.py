@@ -19,6 +19,7 @@ from rich.table import Table
 from acphys import __version__
 from acphys.flags import flag_names
 from acphys.math.cell_id import format_cell_id
+from acphys.math.vector import Vector3
 from acphys.scenario import ScenarioError, builtin_scenarios, load_scenario
 from acphys.simulation import Simulation
 from acphys.trace import TraceError, diff_traces
@@ -66,6 +67,8 @@ def _build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     args = _build_parser().parse_args(argv)
     console = Console()
+    if not console.is_terminal:
+        console = Console(width=120)  # piped output: do not squeeze the summary into 80 columns
     try:
         if args.command == "run":
             return _run(console, args.scenario, args.trace, args.until)
@@ -115,26 +118,27 @@ def _run(console: Console, scenario: str | None, trace: str | None, until: float
 def _summary(sim: Simulation) -> Table:
     table = Table(title=f"{sim.name}: {sim.time:g} s simulated, {len(sim.bodies)} bodies")
     for column in ("body", "cell", "origin (m)", "heading", "velocity (m/s)", "transient"):
-        table.add_column(column)
+        table.add_column(column, no_wrap=column != "transient")
     for body in sim.bodies:
-        origin = body.position.frame.origin
-        v = body.velocity
         table.add_row(
             body.name,
             format_cell_id(body.position.objcell_id),
-            f"{origin.x:.3f}, {origin.y:.3f}, {origin.z:.3f}",
+            _triple(body.position.frame.origin),
             f"{body.position.frame.get_heading():.1f}°",
-            f"{v.x:.3f}, {v.y:.3f}, {v.z:.3f}",
+            _triple(body.velocity),
             " ".join(flag_names(body.transient_state)) or "-",
         )
     return table
 
 
+def _triple(v: Vector3) -> str:
+    return f"{v.x:.2f} {v.y:.2f} {v.z:.2f}"
+
+
 def _check(console: Console, scenario: str) -> int:
     sim = load_scenario(scenario)
-    events = len(sim._events)
     console.print(
-        f"ok: {sim.name}: {len(sim.bodies)} bodies, {events} events, "
+        f"ok: {sim.name}: {len(sim.bodies)} bodies, {len(sim.events)} events, "
         f"{sim.duration:g} s at {sim.driver_hz:g} Hz"
     )
     return 0

@@ -122,6 +122,11 @@ class Simulation:
         return list(self._bodies.values())
 
     @property
+    def events(self) -> list[Event]:
+        """The timeline, in firing order."""
+        return list(self._events)
+
+    @property
     def time(self) -> float:
         return self.world.cur_time
 

@@ -123,7 +123,8 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
     """Re-home a block-local point into the outdoor cell that holds it.
 
     Snaps |x|, |y| < EPSILON to 0, finds the land cell under the point, and
-    rewrites ``loc`` in place to be local to that cell's landblock. Returns
+    rewrites ``loc`` in place to be local to that cell's landblock (retail
+    subtracts multiples of ``flt_8EDE44 = 24.0 * 8.0``). Returns
     the new cell id, or 0 when the point is off the world (``loc`` is then
     left with the snapping only).
 

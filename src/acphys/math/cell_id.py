@@ -124,7 +124,7 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
 
     Snaps |x|, |y| < EPSILON to 0, finds the land cell under the point, and
     rewrites ``loc`` in place to be local to that cell's landblock (retail
-    subtracts multiples of ``flt_8EDE44 = 24.0 * 8.0``). Returns
+    subtracts multiples of ``flt_8EDE44 = 24.0 * 8.0``, acclient.c:800515). Returns
     the new cell id, or 0 when the point is off the world (``loc`` is then
     left with the snapping only).
 

@@ -331,6 +331,23 @@ class TestCellCrossing:
         assert body.cached_velocity.x == pytest.approx(3.0, abs=1e-9)
 
 
+    def test_a_move_off_the_edge_of_the_world_fails_and_keeps_the_origin(self, world):
+        # No cell holds the candidate (lcoord x = -1, LandDefs::get_outside_lcoord): the sweep
+        # fails and UpdateObjectInternal keeps the old origin (acclient.c:322833-322845).
+        from acphys.math.cell_id import outdoor_cell_id
+        from acphys.math.frame import Frame
+        from acphys.math.position import Position
+
+        body = place(world, state=PS(0))
+        point = Vector3(0.1, 5.0, 50.0)
+        assert body.enter_world(Position(outdoor_cell_id(0x0000, point), Frame(point)))
+        body.velocity = Vector3(-6.0, 0.0, 0.0)
+        body.update_object_internal(DT)
+        assert body.position.objcell_id == 0x00000001
+        assert body.position.frame.origin.exactly_equals(point)
+        assert body.cached_velocity.exactly_equals(Vector3())
+
+
 class TestSetVelocity:
     """CPhysicsObj::set_velocity @ 0x005113F0 (acclient.c:318577)."""
 

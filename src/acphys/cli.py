@@ -65,7 +65,11 @@ def _build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = _build_parser().parse_args(argv)
+    """Run the command; returns the exit code (argument errors too, rather than raising)."""
+    try:
+        args = _build_parser().parse_args(argv)
+    except SystemExit as exit_:  # argparse's --help, --version and its (one-line) errors
+        return exit_.code if isinstance(exit_.code, int) else EXIT_BAD_INPUT
     console = Console()
     if not console.is_terminal:
         console = Console(width=120)  # piped output: do not squeeze the summary into 80 columns
@@ -139,7 +143,8 @@ def _check(console: Console, scenario: str) -> int:
     sim = load_scenario(scenario)
     console.print(
         f"ok: {sim.name}: {len(sim.bodies)} bodies, {len(sim.events)} events, "
-        f"{sim.duration:g} s at {sim.driver_hz:g} Hz"
+        f"{sim.duration:g} s at {sim.driver_hz:g} Hz",
+        soft_wrap=True,
     )
     return 0
 
@@ -151,7 +156,7 @@ def _diff(console: Console, a: str, b: str, tol: float) -> int:
     if divergence is None:
         console.print(f"identical within {tol:g}")
         return 0
-    console.print(divergence.describe(), highlight=False)
+    console.print(divergence.describe(), highlight=False, soft_wrap=True)
     return EXIT_DIVERGED
 
 

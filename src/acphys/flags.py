@@ -110,10 +110,10 @@ def parse_flag_names(cls: type[F], names: Iterable[str]) -> F:
 
     Raises ``KeyError`` carrying the first unknown name.
     """
+    by_name = {member.name.lower(): member for member in cls if member.name}
     result = cls(0)
     for name in names:
-        try:
-            result |= cls[name.upper()]
-        except KeyError:
-            raise KeyError(name) from None
+        if name not in by_name:
+            raise KeyError(name)
+        result |= by_name[name]
     return result

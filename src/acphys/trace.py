@@ -150,10 +150,9 @@ class Divergence:
 
 def _first_difference(field: str, a: Any, b: Any, tol: float) -> Divergence | None:
     """Where ``a`` and ``b`` first differ beyond ``tol`` (the record fields are left unset)."""
-    numbers = (int, float)
-    a_number = isinstance(a, numbers) and not isinstance(a, bool)
-    b_number = isinstance(b, numbers) and not isinstance(b, bool)
-    if a_number and b_number:
+    if isinstance(a, bool) or isinstance(b, bool):
+        return None if type(a) is type(b) and a == b else Divergence(0, None, None, field, a, b)
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
         difference = abs(a - b)
         if math.isnan(difference) or difference > tol:
             return Divergence(0, None, None, field, a, b, difference)

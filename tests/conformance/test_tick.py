@@ -330,7 +330,6 @@ class TestCellCrossing:
         assert body in body.cell.objects
         assert body.cached_velocity.x == pytest.approx(3.0, abs=1e-9)
 
-
     def test_a_move_off_the_edge_of_the_world_fails_and_keeps_the_origin(self, world):
         # No cell holds the candidate (lcoord x = -1, LandDefs::get_outside_lcoord): the sweep
         # fails and UpdateObjectInternal keeps the old origin (acclient.c:322833-322845).

@@ -38,13 +38,18 @@ def format_cell_id(cell_id: int) -> str:
     return f"0x{cell_id & 0xFFFFFFFF:08X}"
 
 
+def _valid_cell_index(cell_id: int) -> bool:
+    """The low word names a land cell (1..0x40), an env cell (0x100..0xFFFD) or the block (0xFFFF)."""
+    low = cell_id & 0xFFFF
+    return 1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF
+
+
 def inbound_valid_cellid(cell_id: int) -> bool:
     """A land cell (1..0x40), env cell (0x100..0xFFFD) or block (0xFFFF) inside the world.
 
     Retail: LandDefs::inbound_valid_cellid @ 0x004979A0 (acclient.c:209467)
     """
-    low = cell_id & 0xFFFF
-    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+    if not _valid_cell_index(cell_id):
         return False
     x = (cell_id >> 21) & 0x7F8
     y = (cell_id >> 13) & 0x7F8
@@ -108,8 +113,7 @@ def get_outside_lcoord(cell_id: int, loc: Vector3) -> tuple[int, int] | None:
 
     Retail: LandDefs::get_outside_lcoord @ 0x005A9B00 (acclient.c:467410)
     """
-    low = cell_id & 0xFFFF
-    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+    if not _valid_cell_index(cell_id):
         return None
     # blockid_to_lcoord writes the block's lcoord even when it then reports failure.
     x = ((cell_id >> 21) & 0x7F8) + math.floor(loc.x / CELL_LENGTH)
@@ -130,8 +134,7 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
 
     Retail: LandDefs::adjust_to_outside @ 0x005A9BC0 (acclient.c:467433)
     """
-    low = cell_id & 0xFFFF
-    if not (1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF):
+    if not _valid_cell_index(cell_id):
         return 0
     if abs(loc.x) < EPSILON:
         loc.x = 0.0

@@ -437,12 +437,12 @@ class PhysicsObj:
             committed.qw = committed.qx = committed.qy = committed.qz = 0.0
         self.position.frame.assign(committed)
 
-    def transition(self, old_pos: Position, new_pos: Position, admin_move: bool = False) -> Transition | None:
+    def transition(self, old_pos: Position, new_pos: Position) -> Transition | None:
         """Sweep the body's spheres from ``old_pos`` to ``new_pos``; None when no valid position exists.
 
         Seeds ``frames_stationary_fall`` from the STATIONARY bits
-        (STUCK → 3, STOP → 2, FALL → 1). ``admin_move`` is read by the
-        object info of the collision-sweep issue.
+        (STUCK → 3, STOP → 2, FALL → 1). (Retail's ``admin_move`` argument
+        feeds the object info that arrives with the collision sweep.)
 
         Retail: CPhysicsObj::transition @ 0x00512DC0 (acclient.c:320060)
         """

@@ -361,6 +361,13 @@ class TestSetVelocity:
         assert body.update_time == 3.0
         assert body.jumped_this_frame
 
+    def test_set_local_velocity_rotates_into_the_world(self, world):
+        # set_local_velocity @ 0x005114D0 (acclient.c:318617): m_fl2gv · v, then set_velocity.
+        body = place(world, state=PS(0), heading=90.0)  # facing east
+        body.set_local_velocity(Vector3(0.0, 2.0, 0.0))  # 2 m/s forward
+        assert body.velocity.x == pytest.approx(2.0, abs=1e-12)
+        assert body.velocity.y == pytest.approx(0.0, abs=1e-12)
+
     def test_rejects_nan(self, world):
         body = place(world, state=PS(0))
         with pytest.raises(ValueError, match="velocity must be finite"):

@@ -22,14 +22,6 @@ class Vector3:
         self.y = float(y)
         self.z = float(z)
 
-    @classmethod
-    def of(cls, values: Vector3 | tuple[float, float, float] | list[float]) -> Vector3:
-        """A new vector from another vector or a sequence of three numbers."""
-        if isinstance(values, Vector3):
-            return values.copy()
-        x, y, z = values
-        return cls(x, y, z)
-
     def copy(self) -> Vector3:
         return Vector3(self.x, self.y, self.z)
 
@@ -41,9 +33,6 @@ class Vector3:
         yield self.x
         yield self.y
         yield self.z
-
-    def as_tuple(self) -> tuple[float, float, float]:
-        return (self.x, self.y, self.z)
 
     def __repr__(self) -> str:
         return f"Vector3({self.x!r}, {self.y!r}, {self.z!r})"

@@ -464,9 +464,6 @@ class PhysicsObj:
     def set_position_internal(self, transit: Transition) -> None:
         """Commit a successful sweep: cell, frame, contact, walkable, water, sliding, collisions.
 
-        With no cell at the end of the path the body goes to the lost cell
-        and is deactivated.
-
         Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
         """
         prev_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
@@ -474,9 +471,9 @@ class PhysicsObj:
         path = transit.sphere_path
         info = transit.collision_info
         if path.curr_cell is None:
-            self.store_position(path.curr_pos)
-            self.transient_state &= ~TS.ACTIVE
-            return
+            # Retail stores the position, parks the body in the lost cell and deactivates it.
+            # No sweep of this issue's empty world succeeds without a cell.
+            raise NotImplementedError("a sweep that ends in no cell needs the lost cell (world issue)")
         if self.cell is path.curr_cell:
             self.position.objcell_id = path.curr_pos.objcell_id
         else:

@@ -78,30 +78,19 @@ class TestTimeSlicing:
 class TestGates:
     """update_object's gate (acclient.c:323099-323101) and activity cull (323103-323116)."""
 
-    def test_a_parented_body_is_deactivated_and_not_run(self, world):
-        body = place(world, state=PS(0))
-        body.parent = place(world, name="carrier", state=PS(0))
+    @pytest.mark.parametrize("gate", ["parented", "frozen", "no cell"])
+    def test_a_gated_body_is_deactivated_and_not_run(self, world, gate):
+        # `if (parent || !cell || state & FROZEN_PS) transient_state &= ~ACTIVE_TS` (acclient.c:323099).
+        body = place(world, state=PS.FROZEN if gate == "frozen" else PS(0))
+        if gate == "parented":
+            body.parent = place(world, name="carrier", state=PS(0))
+        elif gate == "no cell":
+            body.change_cell(None)
         seen = _quanta(body)
         world.cur_time = 0.1
         body.update_object()
         assert seen == []
         assert not body.transient_state & TS.ACTIVE
-
-    def test_a_frozen_body_is_deactivated_and_not_run(self, world):
-        body = place(world, state=PS.FROZEN)
-        seen = _quanta(body)
-        world.cur_time = 0.1
-        body.update_object()
-        assert seen == []
-        assert not body.transient_state & TS.ACTIVE
-
-    def test_a_body_without_a_cell_is_not_run(self, world):
-        body = place(world, state=PS(0))
-        body.change_cell(None)
-        seen = _quanta(body)
-        world.cur_time = 0.1
-        body.update_object()
-        assert seen == []
 
     def test_beyond_96_m_from_the_player_a_body_is_deactivated(self, world):
         player = place(world, name="player", state=PS(0), origin=(10.0, 10.0, 50.0))

@@ -2,8 +2,8 @@
 
 ``UpdateObjectInternal`` and ``UpdatePositionInternal`` call each manager a
 body carries, in retail order, and skip the ones it lacks. These protocols
-name exactly the calls the tick makes; the managers themselves arrive with
-the motion and manager issues.
+name exactly the calls the physics makes on the managers that arrive with
+the manager issue (the movement and motion-table managers are in ``motion``).
 """
 
 from __future__ import annotations
@@ -15,16 +15,6 @@ if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
 
 
-class MovementManager(Protocol):
-    """Retail ``MovementManager``: locomotion commands, told when the body lands or leaves ground."""
-
-    def use_time(self) -> None: ...
-
-    def hit_ground(self) -> None: ...
-
-    def leave_ground(self) -> None: ...
-
-
 class PositionManager(Protocol):
     """Retail ``PositionManager``: interpolation, sticky and constraint offsets."""
 
@@ -32,11 +22,9 @@ class PositionManager(Protocol):
 
     def use_time(self) -> None: ...
 
+    def is_fully_constrained(self) -> bool: ...
 
-class MotionTableManager(Protocol):
-    """Retail ``MotionTableManager``: pending animations, ticked by ``CPartArray::HandleMovement``."""
-
-    def use_time(self) -> None: ...
+    def stick_to(self, object_id: int, radius: float, height: float) -> None: ...
 
 
 class DetectionManager(Protocol):

@@ -1,23 +1,60 @@
-"""``CPartArray``: the body's parts, setup and animation sequence, as the tick sees them."""
+"""``CPartArray``: the body's setup, animation sequence and motion-table manager, as the tick sees them."""
 
 from __future__ import annotations
 
-from acphys.attachments import MotionTableManager
+from typing import TYPE_CHECKING
+
+from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
+from acphys.motion.movement import MovementError, MovementParameters, MovementStruct, MovementType
 from acphys.motion.sequence import Sequence
+from acphys.motion.table_manager import MotionTableManager
 from acphys.setup import Setup
+
+if TYPE_CHECKING:
+    from acphys.motion.motion_table import MotionTable
+    from acphys.physics_obj import PhysicsObj
 
 
 class PartArray:
-    """Retail ``CPartArray`` (acclient.h:30762): owns the setup and the sequence."""
+    """Retail ``CPartArray`` (acclient.h:30762): owns the setup, the sequence and the motion tables.
 
-    __slots__ = ("motion_table_manager", "sequence", "setup")
+    ``scale`` is the part array's (uniform) scale, kept equal to the body's
+    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``.
+    """
 
-    def __init__(self, setup: Setup) -> None:
+    __slots__ = ("motion_table_manager", "owner", "scale", "sequence", "setup")
+
+    def __init__(self, setup: Setup, owner: PhysicsObj | None = None) -> None:
         self.setup = setup
+        self.owner = owner
+        self.scale = 1.0
         self.sequence = Sequence()
+        self.sequence.set_object(owner)
         self.motion_table_manager: MotionTableManager | None = None
+
+    def set_owner(self, owner: PhysicsObj) -> None:
+        """Attach the array to its body: the sequence's hooks and the manager's completions go there."""
+        self.owner = owner
+        self.sequence.set_object(owner)
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.physics_obj = owner
+
+    def set_motion_table(self, table: MotionTable | None) -> None:
+        """Give the body a motion table (or take it away), with a fresh manager.
+
+        acphys passes the table itself where retail passes its DAT id; the
+        cached-id shortcut becomes "same table object".
+
+        Retail: CPartArray::SetMotionTableID @ 0x005186E0 (acclient.c:325981)
+        """
+        manager = self.motion_table_manager
+        if manager is not None and manager.table is table:
+            return
+        self.motion_table_manager = None if table is None else MotionTableManager(table, self.owner)
+
+    # -- the tick --------------------------------------------------------------------------
 
     def update(self, quantum: float, offset_frame: Frame) -> None:
         """Advance the sequence, writing root motion into ``offset_frame``.
@@ -25,6 +62,68 @@ class PartArray:
         Retail: CPartArray::Update @ 0x00517DB0 (acclient.c:325139)
         """
         self.sequence.update(quantum, offset_frame)
+
+    def handle_movement(self) -> None:
+        """Tick the motion-table manager, if there is one.
+
+        Retail: CPartArray::HandleMovement @ 0x00517D60 (acclient.c:325105)
+        """
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.use_time()
+
+    def has_anims(self) -> bool:
+        """Retail: CPartArray::HasAnims @ 0x00517D40 (acclient.c:325089)"""
+        return self.sequence.has_anims()
+
+    # -- motion-table requests -------------------------------------------------------------
+
+    def _perform(self, ms: MovementStruct) -> int:
+        if self.motion_table_manager is None:
+            return MovementError.NO_ANIMATION_TABLE
+        return self.motion_table_manager.perform_movement(ms, self.sequence)
+
+    def do_interpreted_motion(self, motion: int, params: MovementParameters) -> int:
+        """Play ``motion`` through the motion table (error 7 without one).
+
+        Retail: CPartArray::DoInterpretedMotion @ 0x00518750 (acclient.c:326017)
+        """
+        return self._perform(MovementStruct(MovementType.INTERPRETED_COMMAND, motion, params=params))
+
+    def stop_interpreted_motion(self, motion: int, params: MovementParameters) -> int:
+        """Retail: CPartArray::StopInterpretedMotion @ 0x005187F0 (acclient.c:326053)"""
+        return self._perform(MovementStruct(MovementType.STOP_INTERPRETED_COMMAND, motion, params=params))
+
+    def stop_completely_internal(self) -> int:
+        """Retail: CPartArray::StopCompletelyInternal @ 0x00518890 (acclient.c:326089)"""
+        return self._perform(MovementStruct(MovementType.STOP_COMPLETELY))
+
+    def animation_done(self, success: bool) -> None:
+        """Retail: CPartArray::AnimationDone @ 0x00517D30 (acclient.c:325079)"""
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.animation_done(success)
+
+    def check_for_completed_motions(self) -> None:
+        """Retail: CPartArray::CheckForCompletedMotions @ 0x00517D50 (acclient.c:325095)"""
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.check_for_completed_motions()
+
+    def initialize_motion_tables(self) -> None:
+        """Put the sequence into the table's default state.
+
+        Retail: CPartArray::InitializeMotionTables @ 0x00517D10 (acclient.c:325067)
+        """
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.initialize_state(self.sequence)
+
+    def handle_enter_world(self) -> None:
+        """Drop link animations (``CPhysicsObj::RemoveLinkAnimations`` lands here).
+
+        Retail: CPartArray::HandleEnterWorld @ 0x00517D70 (acclient.c:325115)
+        """
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.handle_enter_world(self.sequence)
+
+    # -- setup data, scaled ---------------------------------------------------------------
 
     def get_num_sphere(self) -> int:
         """Retail: CPartArray::GetNumSphere @ 0x00518060 (acclient.c:325357)"""
@@ -34,10 +133,26 @@ class PartArray:
         """Retail: CPartArray::GetSphere @ 0x00518070 (acclient.c:325363)"""
         return self.setup.spheres
 
-    def handle_movement(self) -> None:
-        """Tick the motion table manager, if there is one.
+    def get_num_cylsphere(self) -> int:
+        """Retail: CPartArray::GetNumCylsphere @ 0x00518080 (acclient.c:325369)"""
+        return len(self.setup.cylspheres)
 
-        Retail: CPartArray::HandleMovement @ 0x00517D60 (acclient.c:325105)
-        """
-        if self.motion_table_manager is not None:
-            self.motion_table_manager.use_time()
+    def get_cylsphere(self) -> list[CylSphere]:
+        """Retail: CPartArray::GetCylsphere @ 0x00518090 (acclient.c:325375)"""
+        return self.setup.cylspheres
+
+    def get_height(self) -> float:
+        """Retail: CPartArray::GetHeight @ 0x005180B0 (acclient.c:325387)"""
+        return self.setup.height * self.scale
+
+    def get_radius(self) -> float:
+        """Retail: CPartArray::GetRadius @ 0x005180A0 (acclient.c:325381)"""
+        return self.setup.radius * self.scale
+
+    def get_step_up_height(self) -> float:
+        """Retail: CPartArray::GetStepUpHeight @ 0x005180D0 (acclient.c:325399)"""
+        return self.setup.step_up_height * self.scale
+
+    def get_step_down_height(self) -> float:
+        """Retail: CPartArray::GetStepDownHeight @ 0x005180F0 (acclient.c:325413)"""
+        return self.setup.step_down_height * self.scale

@@ -1,30 +1,42 @@
-"""``CSetup``: a body's archetype, here its collision spheres and step heights."""
+"""``CSetup``: a body's archetype: its collision shapes, size, step heights and motion table."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
+from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+
+if TYPE_CHECKING:
+    from acphys.motion.motion_table import MotionTable
 
 
 @dataclass
 class Setup:
     """Retail ``CSetup`` (acclient.h:31119): the parts of it the physics reads.
 
-    ``spheres`` are in the body's local frame (before ``m_scale``).
+    Shapes are in the body's local frame, before scaling; ``CPartArray``
+    scales ``height``, ``radius`` and the step heights by the body's scale.
+    ``motion_table`` stands for ``default_mtable_id``.
     """
 
     name: str
     spheres: list[Sphere] = field(default_factory=list)
+    cylspheres: list[CylSphere] = field(default_factory=list)
+    height: float = 0.0
+    radius: float = 0.0
     step_up_height: float = 0.0
     step_down_height: float = 0.0
+    motion_table: MotionTable | None = None
 
 
 def human_setup() -> Setup:
     """The retail human (setup 0x02000001): two spheres of radius 0.48 at z 0.475 and 1.35.
 
-    Its step heights are filled in with the collision sweep, which is their only reader.
+    Its height, radius and step heights are DAT data acphys does not ship;
+    scenarios set them where they matter.
     """
     return Setup(
         name="human",

@@ -1,17 +1,18 @@
 """``CTransition``: one sweep of a body from where it is to where it wants to be.
 
 This issue ports the transition's shape (object, spheres, path, collision
-info) and the body side that drives it. The world has no geometry yet, so
-the sweep finds nothing to hit: :meth:`Transition.find_valid_position`
-accepts the candidate and only places it in the outdoor cell that holds it.
-The CTransition machine (sub-steps, insertion, slides, steps, validation)
-replaces that body with the collision-sweep issue.
+info) and the body side that drives it. Until the collision-sweep issue
+brings the CTransition machine (sub-steps, insertion, slides, steps,
+validation), :meth:`Transition.find_valid_position` is a placeholder: it
+accepts the candidate, places it in the outdoor cell that holds it, and
+rests it on the landblock's flat ground, if any.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import adjust_to_outside, is_outdoor
 from acphys.math.position import Position
@@ -73,10 +74,13 @@ class Transition:
     def find_valid_position(self) -> bool:
         """Sweep the path; True with ``curr_pos``/``curr_cell`` set when a valid position is found.
 
-        With no geometry every candidate is valid: the end position is taken
-        and re-homed into the outdoor cell under it (crossing landblock
-        seams). A candidate off the edge of the world has no cell and fails,
-        so the body keeps its origin.
+        Placeholder until the collision sweep: every candidate is valid. The
+        end position is re-homed into the outdoor cell under it (crossing
+        landblock seams); one at or below its landblock's flat ground is
+        lifted onto it and gets that ground as its contact plane, which is
+        where retail's sweep leaves a body on flat walkable ground. A
+        candidate off the edge of the world has no cell and fails, so the
+        body keeps its origin.
 
         Retail: CTransition::find_valid_position @ 0x0050C310 (acclient.c:313418)
         """
@@ -87,6 +91,13 @@ class Transition:
         cell = self.world.get_cell(pos.objcell_id) if pos.objcell_id else None
         if cell is None:
             return False
+        ground = self.world.ground_height(pos.objcell_id)
+        if ground is not None and pos.frame.origin.z <= ground:
+            pos.frame.origin.z = ground
+            info = self.collision_info
+            info.contact_plane_valid = True
+            info.contact_plane = Plane.horizontal(ground)
+            info.contact_plane_cell_id = pos.objcell_id
         path.curr_pos = pos
         path.curr_cell = cell
         return True

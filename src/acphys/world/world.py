@@ -5,16 +5,16 @@ Retail keeps the clocks and the player as globals (``Timer::cur_time``,
 ``CObjectMaint::is_active``); acphys keeps them on the world, so several
 independent worlds can run side by side.
 
-This issue's world has no geometry: every outdoor cell of every landblock
-exists and is empty. Terrain, objects and indoor cells arrive with the world
-issue.
+Every outdoor cell of every landblock exists. A landblock may have flat
+ground at a given height (``set_flat_ground``); until the world issue brings
+terrain, objects and indoor cells, that is the only geometry there is.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from acphys.math.cell_id import format_cell_id, inbound_valid_cellid, is_outdoor
+from acphys.math.cell_id import format_cell_id, inbound_valid_cellid, is_outdoor, landblock_of
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -46,6 +46,19 @@ class World:
         #: ``CObjectMaint::is_active``: the cull is on in shipped play (docs/01-physics.md §2).
         self.activity_cull = True
         self._cells: dict[int, ObjCell] = {}
+        self._ground: dict[int, float] = {}
+
+    def set_flat_ground(self, landblock: int, height: float) -> None:
+        """Give ``landblock`` (``0xXXYY``) flat, walkable ground at ``height`` metres."""
+        if not 0 <= landblock <= 0xFFFF:
+            raise ValueError(f"landblock must be 0xXXYY, got 0x{landblock:X}")
+        if height != height or height in (float("inf"), float("-inf")):
+            raise ValueError(f"ground height must be finite, got {height}")
+        self._ground[landblock] = float(height)
+
+    def ground_height(self, cell_id: int) -> float | None:
+        """The flat ground height of the landblock holding ``cell_id``, or None where there is none."""
+        return self._ground.get(landblock_of(cell_id))
 
     def get_cell(self, cell_id: int) -> ObjCell | None:
         """The cell with this id, or None when there is none (off the world, or indoors)."""

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from acphys.constants import BLOCK_LENGTH, MAX_ELASTICITY, MAX_VELOCITY
-from acphys.flags import PhysicsState, TransientState, flag_names, parse_flag_names
+from acphys.flags import TransientState
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import outdoor_cell_id
@@ -29,6 +29,8 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.scenario import values as read
+from acphys.scenario.values import Ctx, ScenarioError
 from acphys.setup import BUILTIN_SETUPS, Setup
 from acphys.simulation import Event, Simulation
 from acphys.world.world import World
@@ -37,115 +39,6 @@ from acphys.world.world import World
 DEFAULT_SCENARIO = "default"
 
 EVENT_ACTIONS = ("set_velocity", "set_omega", "set_state")
-
-
-class ScenarioError(ValueError):
-    """A scenario that cannot be loaded; the message says where and what."""
-
-
-@dataclass
-class _Ctx:
-    """Where in which file a value came from, for error messages."""
-
-    source: str
-
-    def fail(self, key: str, problem: str) -> ScenarioError:
-        return ScenarioError(f"{self.source}: {key}: {problem}")
-
-
-# -- typed readers --------------------------------------------------------------------------
-
-
-def _table(ctx: _Ctx, key: str, value: Any, allowed: tuple[str, ...]) -> dict[str, Any]:
-    if not isinstance(value, dict):
-        raise ctx.fail(key, f"expected a table, got {_kind(value)}")
-    unknown = [name for name in value if name not in allowed]
-    if unknown:
-        raise ctx.fail(
-            f"{key}.{unknown[0]}" if key else unknown[0],
-            f"unknown key (expected one of: {', '.join(allowed)})",
-        )
-    return value
-
-
-def _number(ctx: _Ctx, key: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ctx.fail(key, f"expected a number, got {_kind(value)}")
-    if not math.isfinite(value):
-        raise ctx.fail(key, f"expected a finite number, got {value}")
-    return float(value)
-
-
-def _ranged(ctx: _Ctx, key: str, value: Any, low: float, high: float, *, open_low: bool = False) -> float:
-    number = _number(ctx, key, value)
-    if number < low or number > high or (open_low and number == low):
-        bracket = "(" if open_low else "["
-        raise ctx.fail(key, f"expected a number in {bracket}{low:g}, {high:g}], got {number:g}")
-    return number
-
-
-def _vector(ctx: _Ctx, key: str, value: Any) -> Vector3:
-    if not isinstance(value, list) or len(value) != 3:
-        raise ctx.fail(key, f"expected a list of 3 numbers, got {_kind(value)}")
-    return Vector3(*(_number(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)))
-
-
-def _string(ctx: _Ctx, key: str, value: Any) -> str:
-    if not isinstance(value, str) or not value:
-        raise ctx.fail(key, f"expected a non-empty string, got {_kind(value)}")
-    return value
-
-
-def _bool(ctx: _Ctx, key: str, value: Any) -> bool:
-    if not isinstance(value, bool):
-        raise ctx.fail(key, f"expected true or false, got {_kind(value)}")
-    return value
-
-
-def _landblock(ctx: _Ctx, key: str, value: Any) -> int:
-    """A landblock id ``0xXXYY`` as an integer or a hex string."""
-    if isinstance(value, str):
-        try:
-            number = int(value, 16)
-        except ValueError:
-            raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {value!r}') from None
-    elif isinstance(value, int) and not isinstance(value, bool):
-        number = value
-    else:
-        raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {_kind(value)}')
-    if not 0 <= number <= 0xFEFE:
-        raise ctx.fail(key, f"landblock 0x{number:X} is outside the world (0x0000-0xFEFE)")
-    return number
-
-
-def _state(ctx: _Ctx, key: str, value: Any) -> PhysicsState:
-    if not isinstance(value, list) or not all(isinstance(name, str) for name in value):
-        raise ctx.fail(key, f"expected a list of state names, got {_kind(value)}")
-    try:
-        return parse_flag_names(PhysicsState, value)
-    except KeyError as error:
-        known = ", ".join(flag_names(PhysicsState(sum(PhysicsState))))
-        raise ctx.fail(key, f"unknown state {error.args[0]!r} (known: {known})") from None
-
-
-def _list_of_tables(ctx: _Ctx, key: str, value: Any) -> list[Any]:
-    if not isinstance(value, list):
-        raise ctx.fail(key, f"expected an array of tables ([[{key}]]), got {_kind(value)}")
-    return value
-
-
-def _kind(value: Any) -> str:
-    if isinstance(value, bool):
-        return f"the boolean {str(value).lower()}"
-    if isinstance(value, (int, float)):
-        return f"the number {value}"
-    if isinstance(value, str):
-        return f"the string {value!r}"
-    if isinstance(value, list):
-        return f"a list of {len(value)}"
-    if isinstance(value, dict):
-        return "a table"
-    return type(value).__name__
 
 
 # -- sections -------------------------------------------------------------------------------
@@ -159,38 +52,38 @@ class _Header:
     player: str | None
 
 
-def _read_header(ctx: _Ctx, raw: Any, default_name: str) -> _Header:
-    table = _table(ctx, "scenario", raw, ("name", "duration", "driver_hz", "player"))
-    name = _string(ctx, "scenario.name", table["name"]) if "name" in table else default_name
-    duration = _ranged(ctx, "scenario.duration", table.get("duration", 10.0), 0.0, 1e6, open_low=True)
-    driver_hz = _ranged(ctx, "scenario.driver_hz", table.get("driver_hz", 60.0), 0.0, 1e4, open_low=True)
-    player = _string(ctx, "scenario.player", table["player"]) if "player" in table else None
+def _read_header(ctx: Ctx, raw: Any, default_name: str) -> _Header:
+    table = read.table(ctx, "scenario", raw, ("name", "duration", "driver_hz", "player"))
+    name = read.string(ctx, "scenario.name", table["name"]) if "name" in table else default_name
+    duration = read.ranged(ctx, "scenario.duration", table.get("duration", 10.0), 0.0, 1e6, open_low=True)
+    driver_hz = read.ranged(ctx, "scenario.driver_hz", table.get("driver_hz", 60.0), 0.0, 1e4, open_low=True)
+    player = read.string(ctx, "scenario.player", table["player"]) if "player" in table else None
     return _Header(name, duration, driver_hz, player)
 
 
-def _read_setups(ctx: _Ctx, raw: Any) -> dict[str, Setup]:
+def _read_setups(ctx: Ctx, raw: Any) -> dict[str, Setup]:
     if not isinstance(raw, dict):
-        raise ctx.fail("setup", f"expected tables [setup.NAME], got {_kind(raw)}")
+        raise ctx.fail("setup", f"expected tables [setup.NAME], got {read.kind(raw)}")
     setups: dict[str, Setup] = {}
     for name, value in raw.items():
         key = f"setup.{name}"
-        table = _table(ctx, key, value, ("spheres", "step_up_height", "step_down_height"))
+        table = read.table(ctx, key, value, ("spheres", "step_up_height", "step_down_height"))
         spheres = []
-        for index, item in enumerate(_list_of_tables(ctx, f"{key}.spheres", table.get("spheres", []))):
+        for index, item in enumerate(read.list_of_tables(ctx, f"{key}.spheres", table.get("spheres", []))):
             sphere_key = f"{key}.spheres[{index}]"
-            entry = _table(ctx, sphere_key, item, ("center", "radius"))
+            entry = read.table(ctx, sphere_key, item, ("center", "radius"))
             if "center" not in entry or "radius" not in entry:
                 raise ctx.fail(sphere_key, "a sphere needs center = [x, y, z] and radius")
-            center = _vector(ctx, f"{sphere_key}.center", entry["center"])
-            radius = _ranged(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+            center = read.vector(ctx, f"{sphere_key}.center", entry["center"])
+            radius = read.ranged(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
             spheres.append(Sphere(center, radius))
         setups[name] = Setup(
             name=name,
             spheres=spheres,
-            step_up_height=_ranged(
+            step_up_height=read.ranged(
                 ctx, f"{key}.step_up_height", table.get("step_up_height", 0.0), 0.0, 100.0
             ),
-            step_down_height=_ranged(
+            step_down_height=read.ranged(
                 ctx, f"{key}.step_down_height", table.get("step_down_height", 0.0), 0.0, 100.0
             ),
         )
@@ -213,19 +106,19 @@ BODY_KEYS = (
 )
 
 
-def _omega(ctx: _Ctx, key: str, value: Any) -> Vector3:
+def _omega(ctx: Ctx, key: str, value: Any) -> Vector3:
     """An angular velocity given in degrees per second, returned in radians per second."""
-    degrees = _vector(ctx, key, value)
+    degrees = read.vector(ctx, key, value)
     return Vector3(*(math.radians(component) for component in degrees))
 
 
-def _read_body(ctx: _Ctx, key: str, raw: Any, world: World, setups: dict[str, Setup]) -> PhysicsObj:
-    table = _table(ctx, key, raw, BODY_KEYS)
+def _read_body(ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Setup]) -> PhysicsObj:
+    table = read.table(ctx, key, raw, BODY_KEYS)
     for required in ("name", "landblock", "origin"):
         if required not in table:
             raise ctx.fail(f"{key}.{required}", "missing (every body needs name, landblock and origin)")
-    name = _string(ctx, f"{key}.name", table["name"])
-    setup_name = _string(ctx, f"{key}.setup", table.get("setup", "human"))
+    name = read.string(ctx, f"{key}.name", table["name"])
+    setup_name = read.string(ctx, f"{key}.setup", table.get("setup", "human"))
     if setup_name in setups:
         setup = setups[setup_name]
     elif setup_name in BUILTIN_SETUPS:
@@ -233,27 +126,27 @@ def _read_body(ctx: _Ctx, key: str, raw: Any, world: World, setups: dict[str, Se
     else:
         known = ", ".join([*BUILTIN_SETUPS, *setups])
         raise ctx.fail(f"{key}.setup", f"no setup named {setup_name!r} (known: {known})")
-    landblock = _landblock(ctx, f"{key}.landblock", table["landblock"])
-    origin = _vector(ctx, f"{key}.origin", table["origin"])
+    landblock = read.landblock(ctx, f"{key}.landblock", table["landblock"])
+    origin = read.vector(ctx, f"{key}.origin", table["origin"])
     if not (0.0 <= origin.x < BLOCK_LENGTH and 0.0 <= origin.y < BLOCK_LENGTH):
         raise ctx.fail(
             f"{key}.origin",
             f"x and y must be landblock-local, in [0, 192), got ({origin.x:g}, {origin.y:g})",
         )
-    heading = _ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+    heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
 
     body = PhysicsObj(world, name, PartArray(setup))
     if "state" in table:
-        body.state = _state(ctx, f"{key}.state", table["state"])
-    body.friction = _ranged(ctx, f"{key}.friction", table.get("friction", body.friction), 0.0, 1.0)
-    body.elasticity = _ranged(
+        body.state = read.state(ctx, f"{key}.state", table["state"])
+    body.friction = read.ranged(ctx, f"{key}.friction", table.get("friction", body.friction), 0.0, 1.0)
+    body.elasticity = read.ranged(
         ctx, f"{key}.elasticity", table.get("elasticity", body.elasticity), 0.0, MAX_ELASTICITY
     )
-    body.scale = _ranged(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+    body.scale = read.ranged(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
 
     frame = Frame.from_heading(origin, heading)
     body.enter_world(Position(outdoor_cell_id(landblock, origin), frame))
-    if _bool(ctx, f"{key}.on_ground", table.get("on_ground", False)):
+    if read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False)):
         body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
         body.contact_plane = Plane.horizontal(origin.z)
         body.contact_plane_cell_id = body.position.objcell_id
@@ -265,8 +158,8 @@ def _read_body(ctx: _Ctx, key: str, raw: Any, world: World, setups: dict[str, Se
     return body
 
 
-def _speed_limited(ctx: _Ctx, key: str, value: Any) -> Vector3:
-    velocity = _vector(ctx, key, value)
+def _speed_limited(ctx: Ctx, key: str, value: Any) -> Vector3:
+    velocity = read.vector(ctx, key, value)
     if velocity.length() > MAX_VELOCITY:
         raise ctx.fail(key, f"speed {velocity.length():g} m/s exceeds the retail limit of 50 m/s")
     return velocity
@@ -276,18 +169,18 @@ EVENT_KEYS = ("at", "body", "action", "velocity", "omega", "state")
 _EVENT_VALUE_KEY = {"set_velocity": "velocity", "set_omega": "omega", "set_state": "state"}
 
 
-def _read_event(ctx: _Ctx, key: str, raw: Any, bodies: set[str], duration: float) -> Event:
-    table = _table(ctx, key, raw, EVENT_KEYS)
+def _read_event(ctx: Ctx, key: str, raw: Any, bodies: set[str], duration: float) -> Event:
+    table = read.table(ctx, key, raw, EVENT_KEYS)
     for required in ("at", "body", "action"):
         if required not in table:
             raise ctx.fail(f"{key}.{required}", "missing (every event needs at, body and action)")
-    at = _number(ctx, f"{key}.at", table["at"])
+    at = read.number(ctx, f"{key}.at", table["at"])
     if not 0.0 <= at <= duration:
         raise ctx.fail(f"{key}.at", f"{at:g} s is outside the scenario's [0, {duration:g}] s")
-    body = _string(ctx, f"{key}.body", table["body"])
+    body = read.string(ctx, f"{key}.body", table["body"])
     if body not in bodies:
         raise ctx.fail(f"{key}.body", f"no body named {body!r} (bodies: {', '.join(sorted(bodies))})")
-    action = _string(ctx, f"{key}.action", table["action"])
+    action = read.string(ctx, f"{key}.action", table["action"])
     if action not in EVENT_ACTIONS:
         raise ctx.fail(
             f"{key}.action",
@@ -308,7 +201,7 @@ def _read_event(ctx: _Ctx, key: str, raw: Any, bodies: set[str], duration: float
         omega = _omega(ctx, f"{key}.omega", value)
         apply = lambda obj: obj.set_omega(omega)  # noqa: E731
     else:
-        state = _state(ctx, f"{key}.state", value)
+        state = read.state(ctx, f"{key}.state", value)
         apply = lambda obj: obj.set_state(state)  # noqa: E731
     return Event(at=at, body=body, action=action, apply=apply, source=key)
 
@@ -320,17 +213,17 @@ TOP_KEYS = ("scenario", "setup", "body", "event")
 
 def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "scenario") -> Simulation:
     """Build a :class:`Simulation` from scenario TOML text; ``source`` names it in errors."""
-    ctx = _Ctx(source)
+    ctx = Ctx(source)
     try:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
-    _table(ctx, "", document, TOP_KEYS)
+    read.table(ctx, "", document, TOP_KEYS)
     header = _read_header(ctx, document.get("scenario", {}), default_name)
     setups = _read_setups(ctx, document.get("setup", {}))
 
     world = World()
-    raw_bodies = _list_of_tables(ctx, "body", document.get("body", []))
+    raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
     if not raw_bodies:
         raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
     bodies: list[PhysicsObj] = []
@@ -345,7 +238,7 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
             raise ctx.fail("scenario.player", f"no body named {header.player!r}")
         world.player = next(body for body in bodies if body.name == header.player)
 
-    raw_events = _list_of_tables(ctx, "event", document.get("event", []))
+    raw_events = read.list_of_tables(ctx, "event", document.get("event", []))
     events = [
         _read_event(ctx, f"event[{index}]", raw, names, header.duration)
         for index, raw in enumerate(raw_events)

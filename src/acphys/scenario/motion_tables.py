@@ -1,0 +1,263 @@
+"""``[motion_table.NAME]``: motion tables written in scenario files, and the built-in ones.
+
+A table names its default style and lists its cycles, links and modifiers.
+Each entry is one animation (``frames`` at ``framerate``, optionally played
+from ``low_frame`` to ``high_frame``) with the entry's baked root motion:
+``velocity`` in m/s and ``omega`` in degrees per second, both in the body's
+local space and per unit of speed. Optional ``pos_frame`` (a translation
+applied at every frame boundary, body-local metres) and ``hooks`` fill in
+the animation's position frames and frame hooks. Motions and styles are
+retail command names (``"RunForward"``) or ids.
+
+The built-in tables are files of the same format in ``acphys/data/motion_tables``.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Callable
+from importlib import resources
+from typing import Any
+
+from acphys.math.frame import Frame
+from acphys.math.vector import Vector3
+from acphys.motion import anim_hooks
+from acphys.motion.animation import Animation, AnimData, AnimFrame
+from acphys.motion.commands import MOTION_IDS, READY, STYLE_MASK, SUBSTATE_MASK, motion_id
+from acphys.motion.motion_table import (
+    CLEARS_MODIFIERS,
+    DEFAULT_SUBSTATE_ONLY,
+    MotionData,
+    MotionTable,
+    cycle_key,
+)
+from acphys.scenario import values as read
+from acphys.scenario.values import Ctx, ScenarioError
+
+ANIMATION_KEYS = ("framerate", "frames", "low_frame", "high_frame", "velocity", "omega", "pos_frame", "hooks")
+CYCLE_KEYS = ("style", "motion", "flags", *ANIMATION_KEYS)
+LINK_KEYS = ("style", "from", "to", *ANIMATION_KEYS)
+MODIFIER_KEYS = ("style", "motion", *ANIMATION_KEYS)
+TABLE_KEYS = ("default_style", "style_defaults", "cycle", "link", "modifier")
+
+#: ``MotionData`` bitfield names for ``flags``.
+DATA_FLAGS = {"clears_modifiers": CLEARS_MODIFIERS, "default_substate_only": DEFAULT_SUBSTATE_ONLY}
+
+_DIRECTIONS = {
+    "both": anim_hooks.AnimHookDir.BOTH,
+    "forward": anim_hooks.AnimHookDir.FORWARD,
+    "backward": anim_hooks.AnimHookDir.BACKWARD,
+}
+
+
+def _motion(ctx: Ctx, key: str, value: Any) -> int:
+    """A retail motion or style, by name or id."""
+    if isinstance(value, str) and value.startswith("0x"):
+        try:
+            value = int(value, 16)
+        except ValueError:
+            raise ctx.fail(key, f"expected a motion name or id, got {value!r}") from None
+    if not isinstance(value, (str, int)) or isinstance(value, bool):
+        raise ctx.fail(key, f"expected a motion name or id, got {read.kind(value)}")
+    try:
+        return motion_id(value)
+    except KeyError as error:
+        raise ctx.fail(
+            key, f"{error.args[0]} (retail names such as {', '.join(list(MOTION_IDS)[3:8])})"
+        ) from None
+
+
+def _style(ctx: Ctx, key: str, value: Any) -> int:
+    style = _motion(ctx, key, value)
+    if not style & STYLE_MASK:
+        raise ctx.fail(key, f"0x{style:08X} is not a style (styles are NonCombat, HandCombat, ...)")
+    return style
+
+
+def _count(ctx: Ctx, key: str, value: Any, low: int, high: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise ctx.fail(key, f"expected a whole number in [{low}, {high}], got {read.kind(value)}")
+    return value
+
+
+def _degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
+    degrees = read.vector(ctx, key, value)
+    return Vector3(*(math.radians(component) for component in degrees))
+
+
+_HOOK_ARGS: dict[str, tuple[Callable[..., anim_hooks.AnimHook], tuple[str, ...]]] = {
+    "AnimDone": (anim_hooks.AnimDoneHook, ()),
+    "SetOmega": (anim_hooks.SetOmegaHook, ("axis",)),
+    "Ethereal": (anim_hooks.EtherealHook, ("ethereal",)),
+    "Scale": (anim_hooks.ScaleHook, ("end", "time")),
+    "NoDraw": (anim_hooks.NoDrawHook, ("no_draw",)),
+    "Sound": (anim_hooks.SoundHook, ()),
+    "Attack": (anim_hooks.AttackHook, ()),
+    "CreateParticle": (anim_hooks.CreateParticleHook, ()),
+    "DefaultScript": (anim_hooks.DefaultScriptHook, ()),
+    "CallPES": (anim_hooks.CallPESHook, ()),
+}
+
+
+def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hooks.AnimHook]:
+    entry = read.table(
+        ctx, key, raw, ("frame", "kind", "direction", "axis", "ethereal", "end", "time", "no_draw")
+    )
+    for required in ("frame", "kind"):
+        if required not in entry:
+            raise ctx.fail(f"{key}.{required}", "missing (a hook needs frame and kind)")
+    frame = _count(ctx, f"{key}.frame", entry["frame"], 0, num_frames - 1)
+    kind = read.string(ctx, f"{key}.kind", entry["kind"])
+    if kind not in _HOOK_ARGS:
+        raise ctx.fail(f"{key}.kind", f"unknown hook {kind!r} (known: {', '.join(_HOOK_ARGS)})")
+    factory, arg_names = _HOOK_ARGS[kind]
+    extra = [name for name in entry if name not in ("frame", "kind", "direction", *arg_names)]
+    if extra:
+        raise ctx.fail(f"{key}.{extra[0]}", f"not used by a {kind} hook")
+    args: list[Any] = []
+    for name in arg_names:
+        if name not in entry:
+            raise ctx.fail(f"{key}.{name}", f"missing (a {kind} hook needs {', '.join(arg_names)})")
+        if name == "axis":
+            args.append(_degrees_per_second(ctx, f"{key}.axis", entry["axis"]))
+        elif name in ("ethereal", "no_draw"):
+            args.append(read.boolean(ctx, f"{key}.{name}", entry[name]))
+        else:
+            args.append(read.ranged(ctx, f"{key}.{name}", entry[name], 0.0, 1e6))
+    direction = read.string(ctx, f"{key}.direction", entry.get("direction", "both"))
+    if direction not in _DIRECTIONS:
+        raise ctx.fail(f"{key}.direction", f"expected one of {', '.join(_DIRECTIONS)}, got {direction!r}")
+    return frame, factory(*args, direction=_DIRECTIONS[direction])
+
+
+def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> MotionData:
+    """One animation and its root motion, as the ``MotionData`` of a cycle, link or modifier."""
+    for required in ("framerate", "frames"):
+        if required not in entry:
+            raise ctx.fail(f"{key}.{required}", "missing (an animation needs framerate and frames)")
+    framerate = read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0)
+    num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, 100000)
+    low_frame = _count(ctx, f"{key}.low_frame", entry.get("low_frame", 0), 0, num_frames - 1)
+    high_frame = _count(ctx, f"{key}.high_frame", entry.get("high_frame", -1), -1, num_frames - 1)
+
+    frames = [AnimFrame() for _ in range(num_frames)]
+    for index, raw in enumerate(read.list_of_tables(ctx, f"{key}.hooks", entry.get("hooks", []))):
+        frame, hook = _hook(ctx, f"{key}.hooks[{index}]", raw, num_frames)
+        frames[frame].hooks.append(hook)
+    pos_frames = None
+    if "pos_frame" in entry:
+        step = read.vector(ctx, f"{key}.pos_frame", entry["pos_frame"])
+        pos_frames = [Frame(origin=step) for _ in range(num_frames)]
+    animation = Animation(frames, pos_frames, name=key)
+
+    velocity = read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0]))
+    omega = _degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0]))
+    return MotionData([AnimData(animation, low_frame, high_frame, framerate)], velocity, omega, bitfield)
+
+
+def _flags(ctx: Ctx, key: str, value: Any) -> int:
+    if not isinstance(value, list) or not all(isinstance(name, str) for name in value):
+        raise ctx.fail(key, f"expected a list of flag names, got {read.kind(value)}")
+    bitfield = 0
+    for name in value:
+        if name not in DATA_FLAGS:
+            raise ctx.fail(key, f"unknown flag {name!r} (known: {', '.join(DATA_FLAGS)})")
+        bitfield |= DATA_FLAGS[name]
+    return bitfield
+
+
+def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
+    """Build one ``MotionTable`` from its ``[motion_table.NAME]`` table."""
+    table = read.table(ctx, key, raw, TABLE_KEYS)
+    if "default_style" not in table:
+        raise ctx.fail(f"{key}.default_style", 'missing (for example default_style = "NonCombat")')
+    default_style = _style(ctx, f"{key}.default_style", table["default_style"])
+
+    style_defaults = {default_style: READY}
+    raw_defaults = table.get("style_defaults", {})
+    if not isinstance(raw_defaults, dict):
+        raise ctx.fail(
+            f"{key}.style_defaults", f"expected a table of style = substate, got {read.kind(raw_defaults)}"
+        )
+    for style_name, substate in raw_defaults.items():
+        style = _style(ctx, f"{key}.style_defaults.{style_name}", style_name)
+        style_defaults[style] = _motion(ctx, f"{key}.style_defaults.{style_name}", substate)
+
+    cycles: dict[int, MotionData] = {}
+    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.cycle", table.get("cycle", []))):
+        where = f"{key}.cycle[{index}]"
+        entry = read.table(ctx, where, item, CYCLE_KEYS)
+        if "motion" not in entry:
+            raise ctx.fail(f"{where}.motion", "missing (which motion this cycle plays)")
+        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
+        motion = _motion(ctx, f"{where}.motion", entry["motion"])
+        if not motion & SUBSTATE_MASK:
+            raise ctx.fail(f"{where}.motion", f"0x{motion:08X} is not a substate, so it cannot cycle")
+        bitfield = _flags(ctx, f"{where}.flags", entry.get("flags", []))
+        cycle = cycle_key(style, motion)
+        if cycle in cycles:
+            raise ctx.fail(f"{where}.motion", "this style already has a cycle for that motion")
+        cycles[cycle] = _motion_data(ctx, where, entry, bitfield)
+    for style, substate in style_defaults.items():
+        if cycle_key(style, substate) not in cycles:
+            raise ctx.fail(
+                f"{key}.cycle", f"the default substate 0x{substate:08X} of style 0x{style:08X} has no cycle"
+            )
+
+    links: dict[int, dict[int, MotionData]] = {}
+    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.link", table.get("link", []))):
+        where = f"{key}.link[{index}]"
+        entry = read.table(ctx, where, item, LINK_KEYS)
+        for required in ("from", "to"):
+            if required not in entry:
+                raise ctx.fail(f"{where}.{required}", "missing (a link goes from one motion to another)")
+        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
+        source = _motion(ctx, f"{where}.from", entry["from"])
+        target = _motion(ctx, f"{where}.to", entry["to"])
+        inner = links.setdefault(cycle_key(style, source), {})
+        if target in inner:
+            raise ctx.fail(f"{where}.to", "a link between these motions already exists")
+        inner[target] = _motion_data(ctx, where, entry, 0)
+
+    modifiers: dict[int, MotionData] = {}
+    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.modifier", table.get("modifier", []))):
+        where = f"{key}.modifier[{index}]"
+        entry = read.table(ctx, where, item, MODIFIER_KEYS)
+        if "motion" not in entry:
+            raise ctx.fail(f"{where}.motion", "missing (which motion this modifier plays)")
+        motion = _motion(ctx, f"{where}.motion", entry["motion"])
+        # A modifier without a style is the style-independent one, keyed by the bare command index.
+        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else 0
+        modifier = cycle_key(style, motion)
+        if modifier in modifiers:
+            raise ctx.fail(f"{where}.motion", "this style already has a modifier for that motion")
+        modifiers[modifier] = _motion_data(ctx, where, entry, 0)
+
+    return MotionTable(default_style, style_defaults, cycles, modifiers, links)
+
+
+def read_motion_tables(ctx: Ctx, raw: Any) -> dict[str, MotionTable]:
+    """Every ``[motion_table.NAME]`` of a scenario."""
+    if not isinstance(raw, dict):
+        raise ctx.fail("motion_table", f"expected tables [motion_table.NAME], got {read.kind(raw)}")
+    return {name: read_motion_table(ctx, f"motion_table.{name}", value) for name, value in raw.items()}
+
+
+def builtin_motion_tables() -> list[str]:
+    """The names of the motion tables shipped with acphys."""
+    folder = resources.files("acphys.data.motion_tables")
+    return sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml"))
+
+
+def builtin_motion_table(name: str) -> MotionTable:
+    """A fresh copy of the built-in motion table ``name`` (``"humanoid"``)."""
+    if name not in builtin_motion_tables():
+        raise KeyError(f"no built-in motion table {name!r} (known: {', '.join(builtin_motion_tables())})")
+    text = resources.files("acphys.data.motion_tables").joinpath(f"{name}.toml").read_text("utf-8")
+    source = f"<built-in motion table {name}>"
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ScenarioError(f"{source}: not valid TOML: {error}") from None
+    return read_motion_table(Ctx(source), "motion_table", document.get("motion_table"))

@@ -1,0 +1,116 @@
+"""Typed readers for scenario values: each names the file and key in its error."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from acphys.flags import PhysicsState, flag_names, parse_flag_names
+from acphys.math.vector import Vector3
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be loaded; the message says where and what."""
+
+
+@dataclass
+class Ctx:
+    """Where in which file a value came from, for error messages."""
+
+    source: str
+
+    def fail(self, key: str, problem: str) -> ScenarioError:
+        return ScenarioError(f"{self.source}: {key}: {problem}")
+
+
+def table(ctx: Ctx, key: str, value: Any, allowed: tuple[str, ...]) -> dict[str, Any]:
+    if not isinstance(value, dict):
+        raise ctx.fail(key, f"expected a table, got {kind(value)}")
+    unknown = [name for name in value if name not in allowed]
+    if unknown:
+        raise ctx.fail(
+            f"{key}.{unknown[0]}" if key else unknown[0],
+            f"unknown key (expected one of: {', '.join(allowed)})",
+        )
+    return value
+
+
+def number(ctx: Ctx, key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ctx.fail(key, f"expected a number, got {kind(value)}")
+    if not math.isfinite(value):
+        raise ctx.fail(key, f"expected a finite number, got {value}")
+    return float(value)
+
+
+def ranged(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low: bool = False) -> float:
+    result = number(ctx, key, value)
+    if result < low or result > high or (open_low and result == low):
+        bracket = "(" if open_low else "["
+        raise ctx.fail(key, f"expected a number in {bracket}{low:g}, {high:g}], got {result:g}")
+    return result
+
+
+def vector(ctx: Ctx, key: str, value: Any) -> Vector3:
+    if not isinstance(value, list) or len(value) != 3:
+        raise ctx.fail(key, f"expected a list of 3 numbers, got {kind(value)}")
+    return Vector3(*(number(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)))
+
+
+def string(ctx: Ctx, key: str, value: Any) -> str:
+    if not isinstance(value, str) or not value:
+        raise ctx.fail(key, f"expected a non-empty string, got {kind(value)}")
+    return value
+
+
+def boolean(ctx: Ctx, key: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise ctx.fail(key, f"expected true or false, got {kind(value)}")
+    return value
+
+
+def landblock(ctx: Ctx, key: str, value: Any) -> int:
+    """A landblock id ``0xXXYY`` as an integer or a hex string."""
+    if isinstance(value, str):
+        try:
+            number = int(value, 16)
+        except ValueError:
+            raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {value!r}') from None
+    elif isinstance(value, int) and not isinstance(value, bool):
+        number = value
+    else:
+        raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {kind(value)}')
+    if not 0 <= number <= 0xFEFE:
+        raise ctx.fail(key, f"landblock 0x{number:X} is outside the world (0x0000-0xFEFE)")
+    return number
+
+
+def state(ctx: Ctx, key: str, value: Any) -> PhysicsState:
+    if not isinstance(value, list) or not all(isinstance(name, str) for name in value):
+        raise ctx.fail(key, f"expected a list of state names, got {kind(value)}")
+    try:
+        return parse_flag_names(PhysicsState, value)
+    except KeyError as error:
+        known = ", ".join(flag_names(PhysicsState(sum(PhysicsState))))
+        raise ctx.fail(key, f"unknown state {error.args[0]!r} (known: {known})") from None
+
+
+def list_of_tables(ctx: Ctx, key: str, value: Any) -> list[Any]:
+    if not isinstance(value, list):
+        raise ctx.fail(key, f"expected an array of tables ([[{key}]]), got {kind(value)}")
+    return value
+
+
+def kind(value: Any) -> str:
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, (int, float)):
+        return f"the number {value}"
+    if isinstance(value, str):
+        return f"the string {value!r}"
+    if isinstance(value, list):
+        return f"a list of {len(value)}"
+    if isinstance(value, dict):
+        return "a table"
+    return type(value).__name__

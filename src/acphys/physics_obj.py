@@ -80,10 +80,20 @@ class PhysicsObj:
     divided by the quantum, and root motion never touches either.
     """
 
-    def __init__(self, world: World, name: str = "", part_array: PartArray | None = None) -> None:
-        """Retail defaults: CPhysicsObj::CPhysicsObj @ 0x005123F0 (acclient.c:319489)."""
+    def __init__(
+        self,
+        world: World,
+        name: str = "",
+        part_array: PartArray | None = None,
+        object_id: int | None = None,
+    ) -> None:
+        """Retail defaults: CPhysicsObj::CPhysicsObj @ 0x005123F0 (acclient.c:319489).
+
+        The body is registered with ``world`` under ``object_id`` (the next free id by default).
+        """
         self.world = world
         self.name = name
+        self.id = world.add_object(self, object_id)
         self.part_array = part_array
         if part_array is not None:
             part_array.set_owner(self)
@@ -128,7 +138,8 @@ class PhysicsObj:
         #: ``anim_hooks``: one-shot hooks queued by the sequence, fired by ``process_hooks``.
         self.anim_hooks: list[AnimHook] = []
 
-        #: What happened during the current step ("hit_ground", "collision:environment", ...).
+        #: What happened since the last step was recorded ("hit_ground", "motion:RunForward", ...);
+        #: cleared after each step's observer has seen it.
         self.step_events: list[str] = []
         #: Called after every physics step; the simulation's tracer hangs here.
         self.observer: StepObserver | None = None
@@ -187,6 +198,7 @@ class PhysicsObj:
         self.update_object_internal(quantum)
         if self.observer is not None:
             self.observer(self, quantum)
+        self.step_events.clear()
 
     # -- one step: update_object_internal --------------------------------------------------
 
@@ -197,7 +209,6 @@ class PhysicsObj:
 
         Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
         """
-        self.step_events.clear()
         if self.transient_state & TS.ACTIVE:
             if self.cell is None:
                 return

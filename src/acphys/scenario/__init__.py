@@ -11,34 +11,34 @@ typo never passes silently.
 
 from __future__ import annotations
 
-import math
 import tomllib
-from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from acphys.constants import BLOCK_LENGTH, MAX_ELASTICITY, MAX_VELOCITY
+from acphys.constants import BLOCK_LENGTH, MAX_ELASTICITY
 from acphys.flags import TransientState
+from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import outdoor_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
-from acphys.math.vector import Vector3
+from acphys.motion.motion_table import MotionTable
+from acphys.motion.weenie import Weenie
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 from acphys.scenario import values as read
+from acphys.scenario.events import read_event, speed_limited
+from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
 from acphys.scenario.values import Ctx, ScenarioError
 from acphys.setup import BUILTIN_SETUPS, Setup
-from acphys.simulation import Event, Simulation
+from acphys.simulation import Simulation
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
 DEFAULT_SCENARIO = "default"
-
-EVENT_ACTIONS = ("set_velocity", "set_omega", "set_state")
 
 
 # -- sections -------------------------------------------------------------------------------
@@ -61,13 +61,39 @@ def _read_header(ctx: Ctx, raw: Any, default_name: str) -> _Header:
     return _Header(name, duration, driver_hz, player)
 
 
-def _read_setups(ctx: Ctx, raw: Any) -> dict[str, Setup]:
+SETUP_KEYS = (
+    "spheres",
+    "cylspheres",
+    "height",
+    "radius",
+    "step_up_height",
+    "step_down_height",
+    "motion_table",
+)
+#: The motion table each built-in setup comes with (retail's ``default_mtable_id``).
+BUILTIN_SETUP_TABLES = {"human": "humanoid"}
+
+
+def _motion_table(ctx: Ctx, key: str, value: Any, tables: dict[str, MotionTable]) -> MotionTable | None:
+    """A motion table by name: one of the scenario's, a built-in one, or ``"none"``."""
+    name = read.string(ctx, key, value)
+    if name == "none":
+        return None
+    if name in tables:
+        return tables[name]
+    if name in builtin_motion_tables():
+        return builtin_motion_table(name)
+    known = ", ".join(["none", *builtin_motion_tables(), *tables])
+    raise ctx.fail(key, f"no motion table named {name!r} (known: {known})")
+
+
+def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str, Setup]:
     if not isinstance(raw, dict):
         raise ctx.fail("setup", f"expected tables [setup.NAME], got {read.kind(raw)}")
     setups: dict[str, Setup] = {}
     for name, value in raw.items():
         key = f"setup.{name}"
-        table = read.table(ctx, key, value, ("spheres", "step_up_height", "step_down_height"))
+        table = read.table(ctx, key, value, SETUP_KEYS)
         spheres = []
         for index, item in enumerate(read.list_of_tables(ctx, f"{key}.spheres", table.get("spheres", []))):
             sphere_key = f"{key}.spheres[{index}]"
@@ -77,17 +103,58 @@ def _read_setups(ctx: Ctx, raw: Any) -> dict[str, Setup]:
             center = read.vector(ctx, f"{sphere_key}.center", entry["center"])
             radius = read.ranged(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
             spheres.append(Sphere(center, radius))
+        cylspheres = []
+        for index, item in enumerate(
+            read.list_of_tables(ctx, f"{key}.cylspheres", table.get("cylspheres", []))
+        ):
+            cyl_key = f"{key}.cylspheres[{index}]"
+            entry = read.table(ctx, cyl_key, item, ("low_pt", "radius", "height"))
+            if any(part not in entry for part in ("low_pt", "radius", "height")):
+                raise ctx.fail(cyl_key, "a cylsphere needs low_pt = [x, y, z], radius and height")
+            low_pt = read.vector(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
+            radius = read.ranged(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+            height = read.ranged(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
+            cylspheres.append(CylSphere(low_pt, radius, height))
+
+        def length(field: str) -> float:
+            return read.ranged(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)  # noqa: B023
+
+        motion_table = None
+        if "motion_table" in table:
+            motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables)
         setups[name] = Setup(
             name=name,
             spheres=spheres,
-            step_up_height=read.ranged(
-                ctx, f"{key}.step_up_height", table.get("step_up_height", 0.0), 0.0, 100.0
-            ),
-            step_down_height=read.ranged(
-                ctx, f"{key}.step_down_height", table.get("step_down_height", 0.0), 0.0, 100.0
-            ),
+            cylspheres=cylspheres,
+            height=length("height"),
+            radius=length("radius"),
+            step_up_height=length("step_up_height"),
+            step_down_height=length("step_down_height"),
+            motion_table=motion_table,
         )
     return setups
+
+
+def _builtin_setup(name: str) -> Setup:
+    setup = BUILTIN_SETUPS[name]()
+    if name in BUILTIN_SETUP_TABLES:
+        setup.motion_table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
+    return setup
+
+
+def _read_landblocks(ctx: Ctx, raw: Any, world: World) -> None:
+    seen: set[int] = set()
+    for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
+        key = f"landblock[{index}]"
+        entry = read.table(ctx, key, item, ("id", "height"))
+        for required in ("id", "height"):
+            if required not in entry:
+                raise ctx.fail(f"{key}.{required}", "missing (a landblock needs id and height)")
+        landblock = read.landblock(ctx, f"{key}.id", entry["id"])
+        if landblock in seen:
+            raise ctx.fail(f"{key}.id", f"landblock 0x{landblock:04X} is listed twice")
+        seen.add(landblock)
+        world.set_flat_ground(landblock, read.ranged(ctx, f"{key}.height", entry["height"], -1000.0, 10000.0))
 
 
 BODY_KEYS = (
@@ -103,16 +170,21 @@ BODY_KEYS = (
     "elasticity",
     "scale",
     "on_ground",
+    "motion_table",
+    "run_skill",
+    "jump_skill",
 )
 
 
-def _omega(ctx: Ctx, key: str, value: Any) -> Vector3:
-    """An angular velocity given in degrees per second, returned in radians per second."""
-    degrees = read.vector(ctx, key, value)
-    return Vector3(*(math.radians(component) for component in degrees))
+def _skill(ctx: Ctx, key: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 10000:
+        raise ctx.fail(key, f"expected a whole skill level in [0, 10000], got {read.kind(value)}")
+    return value
 
 
-def _read_body(ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Setup]) -> PhysicsObj:
+def _read_body(
+    ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Setup], tables: dict[str, MotionTable]
+) -> PhysicsObj:
     table = read.table(ctx, key, raw, BODY_KEYS)
     for required in ("name", "landblock", "origin"):
         if required not in table:
@@ -122,7 +194,7 @@ def _read_body(ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Set
     if setup_name in setups:
         setup = setups[setup_name]
     elif setup_name in BUILTIN_SETUPS:
-        setup = BUILTIN_SETUPS[setup_name]()
+        setup = _builtin_setup(setup_name)
     else:
         known = ", ".join([*BUILTIN_SETUPS, *setups])
         raise ctx.fail(f"{key}.setup", f"no setup named {setup_name!r} (known: {known})")
@@ -142,7 +214,17 @@ def _read_body(ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Set
     body.elasticity = read.ranged(
         ctx, f"{key}.elasticity", table.get("elasticity", body.elasticity), 0.0, MAX_ELASTICITY
     )
-    body.scale = read.ranged(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+    body.set_scale_static(
+        read.ranged(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+    )
+    if "run_skill" in table or "jump_skill" in table:
+        body.weenie_obj = Weenie(
+            run_skill=_skill(ctx, f"{key}.run_skill", table.get("run_skill", 0)),
+            jump_skill=_skill(ctx, f"{key}.jump_skill", table.get("jump_skill", 0)),
+        )
+    motion_table = setup.motion_table
+    if "motion_table" in table:
+        motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables)
 
     frame = Frame.from_heading(origin, heading)
     body.enter_world(Position(outdoor_cell_id(landblock, origin), frame))
@@ -151,64 +233,18 @@ def _read_body(ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Set
         body.contact_plane = Plane.horizontal(origin.z)
         body.contact_plane_cell_id = body.position.objcell_id
     body.calc_acceleration()
+    if motion_table is not None:
+        body.set_motion_table(motion_table)
     if "velocity" in table:
-        body.set_velocity(_speed_limited(ctx, f"{key}.velocity", table["velocity"]))
+        body.set_velocity(speed_limited(ctx, f"{key}.velocity", table["velocity"]))
     if "omega" in table:
-        body.set_omega(_omega(ctx, f"{key}.omega", table["omega"]))
+        body.set_omega(read.degrees_per_second(ctx, f"{key}.omega", table["omega"]))
     return body
-
-
-def _speed_limited(ctx: Ctx, key: str, value: Any) -> Vector3:
-    velocity = read.vector(ctx, key, value)
-    if velocity.length() > MAX_VELOCITY:
-        raise ctx.fail(key, f"speed {velocity.length():g} m/s exceeds the retail limit of 50 m/s")
-    return velocity
-
-
-EVENT_KEYS = ("at", "body", "action", "velocity", "omega", "state")
-_EVENT_VALUE_KEY = {"set_velocity": "velocity", "set_omega": "omega", "set_state": "state"}
-
-
-def _read_event(ctx: Ctx, key: str, raw: Any, bodies: set[str], duration: float) -> Event:
-    table = read.table(ctx, key, raw, EVENT_KEYS)
-    for required in ("at", "body", "action"):
-        if required not in table:
-            raise ctx.fail(f"{key}.{required}", "missing (every event needs at, body and action)")
-    at = read.number(ctx, f"{key}.at", table["at"])
-    if not 0.0 <= at <= duration:
-        raise ctx.fail(f"{key}.at", f"{at:g} s is outside the scenario's [0, {duration:g}] s")
-    body = read.string(ctx, f"{key}.body", table["body"])
-    if body not in bodies:
-        raise ctx.fail(f"{key}.body", f"no body named {body!r} (bodies: {', '.join(sorted(bodies))})")
-    action = read.string(ctx, f"{key}.action", table["action"])
-    if action not in EVENT_ACTIONS:
-        raise ctx.fail(
-            f"{key}.action",
-            f"unknown action {action!r} (expected one of: {', '.join(EVENT_ACTIONS)})",
-        )
-    value_key = _EVENT_VALUE_KEY[action]
-    extra = [name for name in table if name not in ("at", "body", "action", value_key)]
-    if extra:
-        raise ctx.fail(f"{key}.{extra[0]}", f"not used by action {action!r} (it takes {value_key})")
-    if value_key not in table:
-        raise ctx.fail(f"{key}.{value_key}", f"missing (action {action!r} needs {value_key})")
-    value = table[value_key]
-    apply: Callable[[PhysicsObj], None]
-    if action == "set_velocity":
-        velocity = _speed_limited(ctx, f"{key}.velocity", value)
-        apply = lambda obj: obj.set_velocity(velocity)  # noqa: E731
-    elif action == "set_omega":
-        omega = _omega(ctx, f"{key}.omega", value)
-        apply = lambda obj: obj.set_omega(omega)  # noqa: E731
-    else:
-        state = read.state(ctx, f"{key}.state", value)
-        apply = lambda obj: obj.set_state(state)  # noqa: E731
-    return Event(at=at, body=body, action=action, apply=apply, source=key)
 
 
 # -- entry points ---------------------------------------------------------------------------
 
-TOP_KEYS = ("scenario", "setup", "body", "event")
+TOP_KEYS = ("scenario", "landblock", "motion_table", "setup", "body", "event")
 
 
 def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "scenario") -> Simulation:
@@ -220,27 +256,29 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
     read.table(ctx, "", document, TOP_KEYS)
     header = _read_header(ctx, document.get("scenario", {}), default_name)
-    setups = _read_setups(ctx, document.get("setup", {}))
+    tables = read_motion_tables(ctx, document.get("motion_table", {}))
+    setups = _read_setups(ctx, document.get("setup", {}), tables)
 
     world = World()
+    _read_landblocks(ctx, document.get("landblock", []), world)
     raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
     if not raw_bodies:
         raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
     bodies: list[PhysicsObj] = []
     for index, raw in enumerate(raw_bodies):
-        body = _read_body(ctx, f"body[{index}]", raw, world, setups)
+        body = _read_body(ctx, f"body[{index}]", raw, world, setups, tables)
         if any(other.name == body.name for other in bodies):
             raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
         bodies.append(body)
-    names = {body.name for body in bodies}
+    by_name = {body.name: body for body in bodies}
     if header.player is not None:
-        if header.player not in names:
+        if header.player not in by_name:
             raise ctx.fail("scenario.player", f"no body named {header.player!r}")
         world.player = next(body for body in bodies if body.name == header.player)
 
     raw_events = read.list_of_tables(ctx, "event", document.get("event", []))
     events = [
-        _read_event(ctx, f"event[{index}]", raw, names, header.duration)
+        read_event(ctx, f"event[{index}]", raw, by_name, header.duration)
         for index, raw in enumerate(raw_events)
     ]
     return Simulation(

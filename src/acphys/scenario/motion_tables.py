@@ -14,17 +14,15 @@ The built-in tables are files of the same format in ``acphys/data/motion_tables`
 
 from __future__ import annotations
 
-import math
 import tomllib
 from collections.abc import Callable
 from importlib import resources
 from typing import Any
 
 from acphys.math.frame import Frame
-from acphys.math.vector import Vector3
 from acphys.motion import anim_hooks
 from acphys.motion.animation import Animation, AnimData, AnimFrame
-from acphys.motion.commands import MOTION_IDS, READY, STYLE_MASK, SUBSTATE_MASK, motion_id
+from acphys.motion.commands import READY, SUBSTATE_MASK
 from acphys.motion.motion_table import (
     CLEARS_MODIFIERS,
     DEFAULT_SUBSTATE_ONLY,
@@ -51,39 +49,10 @@ _DIRECTIONS = {
 }
 
 
-def _motion(ctx: Ctx, key: str, value: Any) -> int:
-    """A retail motion or style, by name or id."""
-    if isinstance(value, str) and value.startswith("0x"):
-        try:
-            value = int(value, 16)
-        except ValueError:
-            raise ctx.fail(key, f"expected a motion name or id, got {value!r}") from None
-    if not isinstance(value, (str, int)) or isinstance(value, bool):
-        raise ctx.fail(key, f"expected a motion name or id, got {read.kind(value)}")
-    try:
-        return motion_id(value)
-    except KeyError as error:
-        raise ctx.fail(
-            key, f"{error.args[0]} (retail names such as {', '.join(list(MOTION_IDS)[3:8])})"
-        ) from None
-
-
-def _style(ctx: Ctx, key: str, value: Any) -> int:
-    style = _motion(ctx, key, value)
-    if not style & STYLE_MASK:
-        raise ctx.fail(key, f"0x{style:08X} is not a style (styles are NonCombat, HandCombat, ...)")
-    return style
-
-
 def _count(ctx: Ctx, key: str, value: Any, low: int, high: int) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         raise ctx.fail(key, f"expected a whole number in [{low}, {high}], got {read.kind(value)}")
     return value
-
-
-def _degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
-    degrees = read.vector(ctx, key, value)
-    return Vector3(*(math.radians(component) for component in degrees))
 
 
 _HOOK_ARGS: dict[str, tuple[Callable[..., anim_hooks.AnimHook], tuple[str, ...]]] = {
@@ -120,7 +89,7 @@ def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hook
         if name not in entry:
             raise ctx.fail(f"{key}.{name}", f"missing (a {kind} hook needs {', '.join(arg_names)})")
         if name == "axis":
-            args.append(_degrees_per_second(ctx, f"{key}.axis", entry["axis"]))
+            args.append(read.degrees_per_second(ctx, f"{key}.axis", entry["axis"]))
         elif name in ("ethereal", "no_draw"):
             args.append(read.boolean(ctx, f"{key}.{name}", entry[name]))
         else:
@@ -152,7 +121,7 @@ def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> Mo
     animation = Animation(frames, pos_frames, name=key)
 
     velocity = read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0]))
-    omega = _degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0]))
+    omega = read.degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0]))
     return MotionData([AnimData(animation, low_frame, high_frame, framerate)], velocity, omega, bitfield)
 
 
@@ -172,7 +141,7 @@ def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
     table = read.table(ctx, key, raw, TABLE_KEYS)
     if "default_style" not in table:
         raise ctx.fail(f"{key}.default_style", 'missing (for example default_style = "NonCombat")')
-    default_style = _style(ctx, f"{key}.default_style", table["default_style"])
+    default_style = read.style(ctx, f"{key}.default_style", table["default_style"])
 
     style_defaults = {default_style: READY}
     raw_defaults = table.get("style_defaults", {})
@@ -181,8 +150,8 @@ def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
             f"{key}.style_defaults", f"expected a table of style = substate, got {read.kind(raw_defaults)}"
         )
     for style_name, substate in raw_defaults.items():
-        style = _style(ctx, f"{key}.style_defaults.{style_name}", style_name)
-        style_defaults[style] = _motion(ctx, f"{key}.style_defaults.{style_name}", substate)
+        style = read.style(ctx, f"{key}.style_defaults.{style_name}", style_name)
+        style_defaults[style] = read.motion(ctx, f"{key}.style_defaults.{style_name}", substate)
 
     cycles: dict[int, MotionData] = {}
     for index, item in enumerate(read.list_of_tables(ctx, f"{key}.cycle", table.get("cycle", []))):
@@ -190,8 +159,8 @@ def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
         entry = read.table(ctx, where, item, CYCLE_KEYS)
         if "motion" not in entry:
             raise ctx.fail(f"{where}.motion", "missing (which motion this cycle plays)")
-        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
-        motion = _motion(ctx, f"{where}.motion", entry["motion"])
+        style = read.style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
+        motion = read.motion(ctx, f"{where}.motion", entry["motion"])
         if not motion & SUBSTATE_MASK:
             raise ctx.fail(f"{where}.motion", f"0x{motion:08X} is not a substate, so it cannot cycle")
         bitfield = _flags(ctx, f"{where}.flags", entry.get("flags", []))
@@ -212,9 +181,9 @@ def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
         for required in ("from", "to"):
             if required not in entry:
                 raise ctx.fail(f"{where}.{required}", "missing (a link goes from one motion to another)")
-        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
-        source = _motion(ctx, f"{where}.from", entry["from"])
-        target = _motion(ctx, f"{where}.to", entry["to"])
+        style = read.style(ctx, f"{where}.style", entry["style"]) if "style" in entry else default_style
+        source = read.motion(ctx, f"{where}.from", entry["from"])
+        target = read.motion(ctx, f"{where}.to", entry["to"])
         inner = links.setdefault(cycle_key(style, source), {})
         if target in inner:
             raise ctx.fail(f"{where}.to", "a link between these motions already exists")
@@ -226,9 +195,9 @@ def read_motion_table(ctx: Ctx, key: str, raw: Any) -> MotionTable:
         entry = read.table(ctx, where, item, MODIFIER_KEYS)
         if "motion" not in entry:
             raise ctx.fail(f"{where}.motion", "missing (which motion this modifier plays)")
-        motion = _motion(ctx, f"{where}.motion", entry["motion"])
+        motion = read.motion(ctx, f"{where}.motion", entry["motion"])
         # A modifier without a style is the style-independent one, keyed by the bare command index.
-        style = _style(ctx, f"{where}.style", entry["style"]) if "style" in entry else 0
+        style = read.style(ctx, f"{where}.style", entry["style"]) if "style" in entry else 0
         modifier = cycle_key(style, motion)
         if modifier in modifiers:
             raise ctx.fail(f"{where}.motion", "this style already has a modifier for that motion")

@@ -8,6 +8,7 @@ from typing import Any
 
 from acphys.flags import PhysicsState, flag_names, parse_flag_names
 from acphys.math.vector import Vector3
+from acphys.motion.commands import MOTION_IDS, STYLE_MASK, motion_id
 
 
 class ScenarioError(ValueError):
@@ -114,3 +115,34 @@ def kind(value: Any) -> str:
     if isinstance(value, dict):
         return "a table"
     return type(value).__name__
+
+
+def degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
+    """An angular velocity given in degrees per second, returned in radians per second."""
+    degrees = vector(ctx, key, value)
+    return Vector3(*(math.radians(component) for component in degrees))
+
+
+def motion(ctx: Ctx, key: str, value: Any) -> int:
+    """A retail motion or style, by name or id."""
+    if isinstance(value, str) and value.startswith("0x"):
+        try:
+            value = int(value, 16)
+        except ValueError:
+            raise ctx.fail(key, f"expected a motion name or id, got {value!r}") from None
+    if not isinstance(value, (str, int)) or isinstance(value, bool):
+        raise ctx.fail(key, f"expected a motion name or id, got {kind(value)}")
+    try:
+        return motion_id(value)
+    except KeyError as error:
+        raise ctx.fail(
+            key, f"{error.args[0]} (retail names such as {', '.join(list(MOTION_IDS)[3:8])})"
+        ) from None
+
+
+def style(ctx: Ctx, key: str, value: Any) -> int:
+    """A retail style (stance), by name or id."""
+    result = motion(ctx, key, value)
+    if not result & STYLE_MASK:
+        raise ctx.fail(key, f"0x{result:08X} is not a style (styles are NonCombat, HandCombat, ...)")
+    return result

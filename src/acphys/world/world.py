@@ -20,6 +20,10 @@ if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
 
 
+#: The first id ``add_object`` hands out (the range retail servers use for dynamic objects).
+FIRST_OBJECT_ID = 0x80000001
+
+
 class ObjCell:
     """Retail ``CObjCell``: a cell bodies are in. Here, an id and its objects."""
 
@@ -47,6 +51,27 @@ class World:
         self.activity_cull = True
         self._cells: dict[int, ObjCell] = {}
         self._ground: dict[int, float] = {}
+        #: ``CObjectMaint``'s object table: every body made in this world, by id.
+        self._objects: dict[int, PhysicsObj] = {}
+        self._next_object_id = FIRST_OBJECT_ID
+
+    def add_object(self, obj: PhysicsObj, object_id: int | None = None) -> int:
+        """Register ``obj`` under ``object_id`` (or the next free id) and return the id."""
+        if object_id is None:
+            while self._next_object_id in self._objects:
+                self._next_object_id += 1
+            object_id = self._next_object_id
+        if not 0 < object_id <= 0xFFFFFFFF:
+            raise ValueError(f"object id must be a non-zero 32-bit id, got {object_id:#x}")
+        if object_id in self._objects:
+            owner = self._objects[object_id].name
+            raise ValueError(f"object id 0x{object_id:08X} is already used by {owner!r}")
+        self._objects[object_id] = obj
+        return object_id
+
+    def get_object(self, object_id: int) -> PhysicsObj | None:
+        """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""
+        return self._objects.get(object_id)
 
     def set_flat_ground(self, landblock: int, height: float) -> None:
         """Give ``landblock`` (``0xXXYY``) flat, walkable ground at ``height`` metres."""

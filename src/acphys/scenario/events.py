@@ -1,0 +1,173 @@
+"""``[[event]]``: what a scenario does to a body at a given time.
+
+Each action reads its own keys; a key another action uses is an error, so a
+misplaced key never passes silently. Motion actions go through the same
+retail entry points a client's command interpreter uses (``DoMotion``,
+``StopMotion``, ``CMotionInterp::jump``, a move-to or turn-to request), and
+their result lands in the body's next trace record: ``"motion:RunForward"``,
+or ``"motion:RunForward:error:0x43"`` when retail refuses it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from acphys.constants import BLOCK_LENGTH, MAX_VELOCITY
+from acphys.math.cell_id import landblock_of, outdoor_cell_id
+from acphys.math.frame import Frame
+from acphys.math.position import Position
+from acphys.math.vector import Vector3
+from acphys.motion.commands import motion_name
+from acphys.motion.movement import HoldKey, MovementParameters
+from acphys.physics_obj import PhysicsObj
+from acphys.scenario import values as read
+from acphys.scenario.values import Ctx
+from acphys.simulation import Event
+
+#: The keys each action takes besides ``at``, ``body`` and ``action``; the first list is required.
+ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    "set_velocity": (("velocity",), ()),
+    "set_omega": (("omega",), ()),
+    "set_state": (("state",), ()),
+    "motion": (("motion",), ("speed", "hold_run")),
+    "stop_motion": (("motion",), ("speed",)),
+    "jump": ((), ("extent",)),
+    "move_to": (("origin",), ("landblock", "distance", "min_distance", "speed", "hold_run", "fail_distance")),
+    "turn_to": (("heading",), ("speed",)),
+}
+EVENT_ACTIONS = tuple(ACTION_KEYS)
+#: Actions that need the body to have a motion table (and so a movement manager).
+MOTION_ACTIONS = ("motion", "stop_motion", "jump", "move_to", "turn_to")
+
+Apply = Callable[[PhysicsObj], None]
+
+
+def speed_limited(ctx: Ctx, key: str, value: Any) -> Vector3:
+    """A velocity no faster than retail's 50 m/s limit."""
+    velocity = read.vector(ctx, key, value)
+    if velocity.length() > MAX_VELOCITY:
+        raise ctx.fail(key, f"speed {velocity.length():g} m/s exceeds the retail limit of 50 m/s")
+    return velocity
+
+
+def _report(obj: PhysicsObj, label: str, error: int) -> None:
+    obj.record_event(label if not error else f"{label}:error:0x{error:02X}")
+
+
+def _params(ctx: Ctx, key: str, table: dict[str, Any]) -> MovementParameters:
+    """The retail default parameters with the event's speed and hold key."""
+    params = MovementParameters()
+    if "speed" in table:
+        params.speed = read.ranged(ctx, f"{key}.speed", table["speed"], 0.0, 100.0, open_low=True)
+    if read.boolean(ctx, f"{key}.hold_run", table.get("hold_run", False)):
+        params.hold_key_to_apply = HoldKey.RUN
+    else:
+        params.hold_key_to_apply = HoldKey.NONE
+    return params
+
+
+def _motion_apply(ctx: Ctx, key: str, action: str, table: dict[str, Any]) -> Apply:
+    motion = read.motion(ctx, f"{key}.motion", table["motion"])
+    params = _params(ctx, key, table)
+    label = f"{action}:{motion_name(motion)}"
+    if action == "motion":
+        return lambda obj: _report(obj, label, obj.do_motion(motion, params.copy()))
+    return lambda obj: _report(obj, label, obj.stop_motion(motion, params.copy()))
+
+
+def _jump_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
+    extent = read.ranged(ctx, f"{key}.extent", table.get("extent", 1.0), 0.0, 1.0)
+
+    def jump(obj: PhysicsObj) -> None:
+        error, _stamina = obj.get_minterp().jump(extent)
+        _report(obj, "jump", error)
+
+    return jump
+
+
+def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Apply:
+    origin = read.vector(ctx, f"{key}.origin", table["origin"])
+    if not (0.0 <= origin.x < BLOCK_LENGTH and 0.0 <= origin.y < BLOCK_LENGTH):
+        raise ctx.fail(
+            f"{key}.origin", f"x and y must be landblock-local, in [0, 192), got ({origin.x:g}, {origin.y:g})"
+        )
+    if "landblock" in table:
+        landblock = read.landblock(ctx, f"{key}.landblock", table["landblock"])
+    else:
+        landblock = landblock_of(body.position.objcell_id) >> 16
+    target = Position(outdoor_cell_id(landblock, origin), Frame(origin))
+    params = _params(ctx, key, table)
+    if "distance" in table:
+        params.distance_to_object = read.ranged(ctx, f"{key}.distance", table["distance"], 0.0, 1000.0)
+    if "min_distance" in table:
+        params.min_distance = read.ranged(ctx, f"{key}.min_distance", table["min_distance"], 0.0, 1000.0)
+    if "fail_distance" in table:
+        params.fail_distance = read.ranged(ctx, f"{key}.fail_distance", table["fail_distance"], 0.0, 1e6)
+    return lambda obj: _report(obj, "move_to", obj.move_to_position(target, params.copy()))
+
+
+def _turn_to_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
+    params = _params(ctx, key, table)
+    params.desired_heading = read.ranged(ctx, f"{key}.heading", table["heading"], 0.0, 360.0) % 360.0
+
+    def turn(obj: PhysicsObj) -> None:
+        obj.turn_to_heading(params.copy())
+        obj.record_event("turn_to")
+
+    return turn
+
+
+def read_event(ctx: Ctx, key: str, raw: Any, bodies: dict[str, PhysicsObj], duration: float) -> Event:
+    """One ``[[event]]``, checked against the scenario's bodies and duration."""
+    table = read.table(
+        ctx, key, raw, ("at", "body", "action", *{k for r, o in ACTION_KEYS.values() for k in r + o})
+    )
+    for required in ("at", "body", "action"):
+        if required not in table:
+            raise ctx.fail(f"{key}.{required}", "missing (every event needs at, body and action)")
+    at = read.number(ctx, f"{key}.at", table["at"])
+    if not 0.0 <= at <= duration:
+        raise ctx.fail(f"{key}.at", f"{at:g} s is outside the scenario's [0, {duration:g}] s")
+    name = read.string(ctx, f"{key}.body", table["body"])
+    if name not in bodies:
+        raise ctx.fail(f"{key}.body", f"no body named {name!r} (bodies: {', '.join(sorted(bodies))})")
+    body = bodies[name]
+    action = read.string(ctx, f"{key}.action", table["action"])
+    if action not in ACTION_KEYS:
+        raise ctx.fail(
+            f"{key}.action", f"unknown action {action!r} (expected one of: {', '.join(EVENT_ACTIONS)})"
+        )
+    required, optional = ACTION_KEYS[action]
+    extra = [k for k in table if k not in ("at", "body", "action", *required, *optional)]
+    if extra:
+        takes = ", ".join((*required, *optional)) or "nothing else"
+        raise ctx.fail(f"{key}.{extra[0]}", f"not used by action {action!r} (it takes {takes})")
+    for needed in required:
+        if needed not in table:
+            raise ctx.fail(f"{key}.{needed}", f"missing (action {action!r} needs {needed})")
+    if action in MOTION_ACTIONS and (body.part_array is None or body.part_array.motion_table_manager is None):
+        raise ctx.fail(
+            f"{key}.action",
+            f'body {name!r} has no motion table for {action!r} (give it motion_table = "humanoid")',
+        )
+
+    apply: Apply
+    if action == "set_velocity":
+        velocity = speed_limited(ctx, f"{key}.velocity", table["velocity"])
+        apply = lambda obj: obj.set_velocity(velocity)  # noqa: E731
+    elif action == "set_omega":
+        omega = read.degrees_per_second(ctx, f"{key}.omega", table["omega"])
+        apply = lambda obj: obj.set_omega(omega)  # noqa: E731
+    elif action == "set_state":
+        state = read.state(ctx, f"{key}.state", table["state"])
+        apply = lambda obj: obj.set_state(state)  # noqa: E731
+    elif action in ("motion", "stop_motion"):
+        apply = _motion_apply(ctx, key, action, table)
+    elif action == "jump":
+        apply = _jump_apply(ctx, key, table)
+    elif action == "move_to":
+        apply = _move_to_apply(ctx, key, table, body)
+    else:
+        apply = _turn_to_apply(ctx, key, table)
+    return Event(at=at, body=name, action=action, apply=apply, source=key)

@@ -44,6 +44,7 @@ from acphys.constants import (
     SLEDDING_STEEP_Z,
     SLEDDING_STOP_SPEED2,
     SMALL_VELOCITY,
+    float32,
 )
 from acphys.flags import DEFAULT_PHYSICS_STATE, STATIONARY_MASK, PhysicsState, TransientState
 from acphys.geometry.plane import Plane
@@ -193,11 +194,16 @@ class PhysicsObj:
         self.update_time = world.physics_time
 
     def _run_quantum(self, quantum: float) -> None:
-        """Advance the physics timer by ``quantum`` and run one step (update_object's slice)."""
+        """Advance the physics timer by ``quantum`` and run one step (update_object's slice).
+
+        The timer advances by the double quantum; the step receives it as a
+        float32, as ``UpdateObjectInternal(float quantum)`` does in retail.
+        """
         self.world.physics_time += quantum
-        self.update_object_internal(quantum)
+        step = float32(quantum)
+        self.update_object_internal(step)
         if self.observer is not None:
-            self.observer(self, quantum)
+            self.observer(self, step)
         self.step_events.clear()
 
     # -- one step: update_object_internal --------------------------------------------------

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from acphys.constants import MIN_QUANTUM
+from acphys.constants import MIN_QUANTUM, float32
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransientState as TS
 from acphys.math.vector import Vector3
@@ -13,7 +13,11 @@ from support import place
 
 
 def _quanta(body) -> list[float]:
-    """Record every quantum update_object hands to update_object_internal."""
+    """Record every quantum update_object hands to update_object_internal.
+
+    UpdateObjectInternal takes a ``float quantum`` (acclient.c:322718), so each
+    recorded step is the float32 of the double slice update_object computed.
+    """
     seen: list[float] = []
     body.observer = lambda _body, quantum: seen.append(quantum)
     return seen
@@ -46,7 +50,7 @@ class TestTimeSlicing:
         seen = _quanta(body)
         world.cur_time = elapsed
         body.update_object()
-        assert seen == pytest.approx(steps, abs=1e-12)
+        assert seen == pytest.approx([float32(step) for step in steps], abs=1e-12)
         assert body.update_time == pytest.approx(update_time, abs=1e-12)
 
     def test_the_physics_timer_advances_with_each_slice(self, world):
@@ -65,7 +69,7 @@ class TestTimeSlicing:
         body.update_object()
         world.cur_time = 0.25
         body.update_object()
-        assert seen == pytest.approx([0.2, 0.05], abs=1e-12)
+        assert seen == pytest.approx([float32(0.2), float32(0.05)], abs=1e-12)
 
     def test_a_dropped_interval_moves_nothing(self, world):
         body = place(world, state=PS(0))
@@ -182,7 +186,7 @@ class TestUseTime:
         assert seen == []
         world.cur_time = MIN_QUANTUM
         assert physics.use_time() is True
-        assert seen == pytest.approx([MIN_QUANTUM], abs=1e-15)
+        assert seen == [float32(MIN_QUANTUM)]
         assert physics.last_update == MIN_QUANTUM
 
     def test_a_clock_that_goes_backwards_resyncs(self, world):

@@ -8,6 +8,7 @@ from acphys.math.cell_id import outdoor_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.motion.motion_table import MotionTable
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 from acphys.setup import Setup, human_setup
@@ -25,8 +26,12 @@ def place(
     origin: tuple[float, float, float] = (96.0, 96.0, 50.0),
     heading: float = 0.0,
     on_ground: bool = False,
+    motion_table: MotionTable | None = None,
 ) -> PhysicsObj:
-    """A body entered into ``world`` at ``origin`` (landblock 0xA9B4), active, with its acceleration set."""
+    """A body entered into ``world`` at ``origin`` (landblock 0xA9B4), active, with its acceleration set.
+
+    With a ``motion_table`` the body also gets a movement manager in its default state.
+    """
     setup = human_setup() if spheres else Setup(name="marker", spheres=[])
     body = PhysicsObj(world, name, PartArray(setup))
     body.state = state
@@ -36,4 +41,6 @@ def place(
         body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
         body.contact_plane = Plane.horizontal(origin[2])
     body.calc_acceleration()
+    if motion_table is not None:
+        body.set_motion_table(motion_table)
     return body

@@ -7,7 +7,8 @@ from ``low_frame`` to ``high_frame``) with the entry's baked root motion:
 local space and per unit of speed. Optional ``pos_frame`` (a translation
 applied at every frame boundary, body-local metres) and ``hooks`` fill in
 the animation's position frames and frame hooks. Motions and styles are
-retail command names (``"RunForward"``) or ids.
+retail command names (``"RunForward"``) or ids. Velocities, turn rates and
+framerates are stored as float32, as the DAT records hold them.
 
 The built-in tables are files of the same format in ``acphys/data/motion_tables``.
 """
@@ -19,7 +20,9 @@ from collections.abc import Callable
 from importlib import resources
 from typing import Any
 
+from acphys.constants import float32
 from acphys.math.frame import Frame
+from acphys.math.vector import Vector3
 from acphys.motion import anim_hooks
 from acphys.motion.animation import Animation, AnimData, AnimFrame
 from acphys.motion.commands import READY, SUBSTATE_MASK
@@ -100,12 +103,16 @@ def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hook
     return frame, factory(*args, direction=_DIRECTIONS[direction])
 
 
+def _float32_vector(v: Vector3) -> Vector3:
+    return Vector3(float32(v.x), float32(v.y), float32(v.z))
+
+
 def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> MotionData:
     """One animation and its root motion, as the ``MotionData`` of a cycle, link or modifier."""
     for required in ("framerate", "frames"):
         if required not in entry:
             raise ctx.fail(f"{key}.{required}", "missing (an animation needs framerate and frames)")
-    framerate = read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0)
+    framerate = float32(read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0))
     num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, 100000)
     low_frame = _count(ctx, f"{key}.low_frame", entry.get("low_frame", 0), 0, num_frames - 1)
     high_frame = _count(ctx, f"{key}.high_frame", entry.get("high_frame", -1), -1, num_frames - 1)
@@ -120,8 +127,8 @@ def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> Mo
         pos_frames = [Frame(origin=step) for _ in range(num_frames)]
     animation = Animation(frames, pos_frames, name=key)
 
-    velocity = read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0]))
-    omega = read.degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0]))
+    velocity = _float32_vector(read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0])))
+    omega = _float32_vector(read.degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0])))
     return MotionData([AnimData(animation, low_frame, high_frame, framerate)], velocity, omega, bitfield)
 
 

@@ -22,7 +22,7 @@ SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 BAD = SCENARIOS / "bad"
 VALID = SCENARIOS / "valid_minimal.toml"
 BAD_FILES = sorted(BAD.glob("*.toml"))
-DEFAULT_BODIES = ("skydiver", "ball", "spinner", "drifter", "sitter")
+DEFAULT_BODIES = ("skydiver", "ball", "spinner", "drifter", "sitter", "walker", "runner")
 
 
 def invoke(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
@@ -74,7 +74,7 @@ def test_run_without_a_scenario_summarises_the_default(capsys: pytest.CaptureFix
     code, out, err = invoke(["run"], capsys)
     assert code == 0, err
     assert err == ""
-    assert "default: 8 s simulated, 5 bodies" in one_line(out)
+    assert "default: 8 s simulated, 7 bodies" in one_line(out)
     for name in DEFAULT_BODIES:
         assert name in out
 
@@ -86,7 +86,7 @@ def test_run_writes_the_trace(tmp_path: Path, capsys: pytest.CaptureFixture[str]
     assert "0.5 s simulated" in one_line(out)
     assert "trace:" in out
     records = [json.loads(line) for line in path.read_text(encoding="utf-8").splitlines()]
-    assert len(records) == 75  # 5 bodies x 15 steps at 30 Hz
+    assert len(records) == 105  # 7 bodies x 15 steps at 30 Hz
     assert {record["body"] for record in records} == set(DEFAULT_BODIES)
 
 
@@ -97,7 +97,7 @@ def test_run_a_scenario_file_and_a_built_in_name(capsys: pytest.CaptureFixture[s
     assert "walker" in out and "rock" in out
     code, out, err = invoke(["run", "default", "--until", "0.1"], capsys)
     assert code == 0, err
-    assert "default: 0.1 s simulated, 5 bodies" in one_line(out)
+    assert "default: 0.1 s simulated, 7 bodies" in one_line(out)
 
 
 @pytest.mark.parametrize("until", ["-1", "nan", "inf"])
@@ -139,7 +139,7 @@ def test_check_the_default_scenario_by_name(capsys: pytest.CaptureFixture[str]) 
     code, out, err = invoke(["check", "default"], capsys)
     assert code == 0, err
     assert err == ""
-    assert one_line(out) == "ok: default: 5 bodies, 2 events, 8 s at 60 Hz"
+    assert one_line(out) == "ok: default: 7 bodies, 6 events, 8 s at 60 Hz"
 
 
 def test_check_a_valid_file(capsys: pytest.CaptureFixture[str]) -> None:
@@ -283,7 +283,7 @@ def test_the_module_entry_point_checks_and_fails_in_one_line(tmp_path: Path) -> 
 def test_the_module_entry_point_runs_and_diffs(tmp_path: Path) -> None:
     done = _command("run", "--trace", "a.jsonl", "--until", "0.5", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
-    assert len((tmp_path / "a.jsonl").read_text(encoding="utf-8").splitlines()) == 75
+    assert len((tmp_path / "a.jsonl").read_text(encoding="utf-8").splitlines()) == 105
     shutil.copyfile(tmp_path / "a.jsonl", tmp_path / "b.jsonl")
     done = _command("diff", "a.jsonl", "b.jsonl", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
@@ -301,7 +301,7 @@ def test_the_installed_console_script(tmp_path: Path) -> None:
         [script, "check", "default"], capture_output=True, text=True, cwd=tmp_path, timeout=120
     )
     assert done.returncode == 0, done.stderr
-    assert done.stdout.startswith("ok: default: 5 bodies")
+    assert done.stdout.startswith("ok: default: 7 bodies")
     done = subprocess.run(
         [script, "check", str(BAD / "no_body.toml")],
         capture_output=True,

@@ -21,7 +21,7 @@ from acphys.flags import TransientState
 from acphys.trace import RECORD_KEYS, Divergence, TraceError, diff_traces, read_trace
 
 #: The bodies of the built-in default scenario, in file order.
-DEFAULT_BODIES = ("skydiver", "ball", "spinner", "drifter", "sitter")
+DEFAULT_BODIES = ("skydiver", "ball", "spinner", "drifter", "sitter", "walker", "runner")
 #: A 60-Hz driver runs the bodies at 30 Hz: 0.5 s is 15 physics steps per body.
 STEPS_IN_HALF_SECOND = 15
 TRANSIENT_NAMES = {member.name.lower() for member in TransientState}
@@ -67,7 +67,7 @@ def by_body(records: list[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
 
 
 def test_one_record_per_body_per_physics_step(records: list[dict[str, Any]]) -> None:
-    assert len(records) == len(DEFAULT_BODIES) * STEPS_IN_HALF_SECOND == 75
+    assert len(records) == len(DEFAULT_BODIES) * STEPS_IN_HALF_SECOND == 105
     assert Counter(record["body"] for record in records) == dict.fromkeys(
         DEFAULT_BODIES, STEPS_IN_HALF_SECOND
     )
@@ -145,7 +145,7 @@ def test_contact_normal_is_null_unless_in_contact(records: list[dict[str, Any]])
             assert record["contact_normal"] == pytest.approx([0.0, 0.0, 1.0])
         else:
             assert record["contact_normal"] is None, record["body"]
-    assert in_contact == STEPS_IN_HALF_SECOND  # the sitter, every step
+    assert in_contact == 3 * STEPS_IN_HALF_SECOND  # the sitter, the walker and the runner, every step
 
 
 def test_events_is_a_list_of_names(records: list[dict[str, Any]]) -> None:

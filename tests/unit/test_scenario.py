@@ -186,7 +186,8 @@ def test_a_directory_is_not_a_scenario(tmp_path: Path) -> None:
 def test_the_default_scenario_loads_with_its_seven_bodies() -> None:
     sim = acphys.load_scenario()
     assert sim.name == "default"
-    assert [body.name for body in sim.bodies] == ["skydiver", "ball", "spinner", "drifter", "sitter", "walker", "runner"]
+    names = ["skydiver", "ball", "spinner", "drifter", "sitter", "walker", "runner"]
+    assert [body.name for body in sim.bodies] == names
     assert sim.duration == 8.0
     assert sim.driver_hz == 60.0
     assert "default" in builtin_scenarios()

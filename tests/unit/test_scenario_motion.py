@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 from pathlib import Path
@@ -53,7 +54,10 @@ to = "RunForward"
 framerate = 30.0
 frames = 3
 pos_frame = [0.0, 0.01, 0.0]
-hooks = [{ frame = 1, kind = "Sound" }, { frame = 2, kind = "Ethereal", ethereal = false, direction = "forward" }]
+hooks = [
+    { frame = 1, kind = "Sound" },
+    { frame = 2, kind = "Ethereal", ethereal = false, direction = "forward" },
+]
 
 [[motion_table.runner.modifier]]
 motion = "TurnRight"
@@ -83,7 +87,7 @@ class TestMotionTableFromAScenario:
         assert set(table.cycles) == {
             cycle_key(style, m) for m in (cmd.READY, cmd.RUN_FORWARD, cmd.TURN_RIGHT)
         }
-        # A link is keyed (style, from) then by the full target id (CMotionTable::get_link, acclient.c:337584).
+        # A link is keyed (style, from), then by the full target id (get_link, acclient.c:337584).
         assert set(table.links) == {cycle_key(style, cmd.READY)}
         assert set(table.links[cycle_key(style, cmd.READY)]) == {cmd.RUN_FORWARD}
         # A modifier without a style is the style-independent one: the bare command index.
@@ -189,7 +193,7 @@ class TestTheDefaultScenario:
         for name, speed in (("walker", float(WALK_ANIM_SPEED)), ("runner", RUN_ANIM_SPEED)):
             ys = [record["origin"][1] for record in records if record["body"] == name]
             frame = speed / 30.0
-            steps = [(b - a) / frame for a, b in zip(ys, ys[1:], strict=False)]
+            steps = [(b - a) / frame for a, b in itertools.pairwise(ys)]
             # Every step is a whole number of frames (0, 1 or 2 at 30 fps and 30 Hz).
             assert all(abs(s - round(s)) < 1e-6 and round(s) in (0, 1, 2) for s in steps), name
             assert sum(round(s) for s in steps) >= 55, name  # moving from 0.5 s to 2.5 s

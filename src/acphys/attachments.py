@@ -26,13 +26,31 @@ class PositionManager(Protocol):
 
     def stick_to(self, object_id: int, radius: float, height: float) -> None: ...
 
+    def unstick(self) -> None: ...
+
+    def is_interpolating(self) -> bool: ...
+
 
 class DetectionManager(Protocol):
     def check_detection(self) -> None: ...
 
 
+class TargetInfoLike(Protocol):
+    quantum: float
+
+
 class TargetManager(Protocol):
+    """Retail ``TargetManager``: tracks the object a move-to or turn-to is aimed at."""
+
+    target_info: TargetInfoLike | None
+
     def handle_targetting(self) -> None: ...
+
+    def set_target(self, context_id: int, object_id: int, radius: float, quantum: float) -> None: ...
+
+    def clear_target(self) -> None: ...
+
+    def set_target_quantum(self, new_quantum: float) -> None: ...
 
 
 class ParticleManager(Protocol):

@@ -963,6 +963,71 @@ class PhysicsObj:
             self.state &= ~PS.NODRAW
         return True
 
+    # -- what the motion code asks of the body and its managers ----------------------------
+
+    def get_radius(self) -> float:
+        """Retail: CPhysicsObj::GetRadius @ 0x0050E9C0 (acclient.c:315672)"""
+        return self.part_array.get_radius() if self.part_array is not None else 0.0
+
+    def get_height(self) -> float:
+        """Retail: CPhysicsObj::GetHeight @ 0x0050E9E0 (acclient.c:315686)"""
+        return self.part_array.get_height() if self.part_array is not None else 0.0
+
+    def is_interpolating(self) -> bool:
+        """Retail: CPhysicsObj::IsInterpolating @ 0x0050EB50 (acclient.c:315846)"""
+        return self.position_manager is not None and bool(self.position_manager.is_interpolating())
+
+    def set_target(self, context_id: int, object_id: int, radius: float, quantum: float) -> None:
+        """Ask the body's target manager to track ``object_id``.
+
+        Retail creates the target manager here when the body has none; acphys has
+        no target manager to create yet, so a body without one is refused.
+
+        Retail: CPhysicsObj::set_target @ 0x0050ED30 (acclient.c:315991)
+        """
+        if self.target_manager is None:
+            raise ValueError(
+                f"body {self.name!r} has no target manager to track object 0x{object_id:08X} with "
+                "(a move or turn to an object needs one)"
+            )
+        self.target_manager.set_target(context_id, object_id, radius, quantum)
+
+    def clear_target(self) -> None:
+        """Retail: CPhysicsObj::clear_target @ 0x0050ED90 (acclient.c:316011)"""
+        if self.target_manager is not None:
+            self.target_manager.clear_target()
+
+    def get_target_quantum(self) -> float:
+        """Retail: CPhysicsObj::get_target_quantum @ 0x0050EDC0 (acclient.c:316031)"""
+        manager = self.target_manager
+        if manager is None or manager.target_info is None:
+            return 0.0
+        return manager.target_info.quantum
+
+    def set_target_quantum(self, new_quantum: float) -> None:
+        """Retail: CPhysicsObj::set_target_quantum @ 0x0050EDA0 (acclient.c:316021)"""
+        if self.target_manager is not None:
+            self.target_manager.set_target_quantum(new_quantum)
+
+    def get_position_manager(self) -> PositionManager:
+        """The body's position manager.
+
+        Retail creates one here when the body has none (``MakePositionManager``);
+        acphys has no position manager to create yet, so a body without one is refused.
+
+        Retail: CPhysicsObj::get_position_manager @ 0x00512130 (acclient.c:319308)
+        """
+        if self.position_manager is None:
+            raise ValueError(f"body {self.name!r} has no position manager to stick to its target with")
+        return self.position_manager
+
+    def unstick_from_object(self) -> None:
+        """Let go of a sticky target (through the position manager, if any).
+
+        Retail: CPhysicsObj::unstick_from_object @ 0x0050EAE0 (acclient.c:315797)
+        """
+        if self.position_manager is not None:
+            self.position_manager.unstick()
 
 
 def _require_finite(what: str, v: Vector3) -> None:

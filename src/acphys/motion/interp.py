@@ -92,15 +92,6 @@ def on_ground(obj: PhysicsObj) -> bool:
     return bool(obj.transient_state & TS.CONTACT) and bool(obj.transient_state & TS.ON_WALKABLE)
 
 
-def unstick_from_object(obj: PhysicsObj) -> None:
-    """Let go of a sticky target (through the position manager, if any).
-
-    Retail: CPhysicsObj::unstick_from_object @ 0x0050EAE0 (acclient.c:315797)
-    """
-    if obj.position_manager is not None:
-        obj.position_manager.unstick()
-
-
 class ActionNode:
     """One queued action (a one-shot animation) of a motion state.
 
@@ -709,7 +700,7 @@ class MotionInterp:
         """Retire the oldest pending motion; a finished action also leaves both action queues."""
         head = self.pending_motions[0]
         if head.motion & ACTION_MASK:
-            unstick_from_object(self.physics_obj)
+            self.physics_obj.unstick_from_object()
             self.interpreted_state.remove_action()
             self.raw_state.remove_action()
         self.pending_motions.pop(0)

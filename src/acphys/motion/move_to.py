@@ -30,7 +30,6 @@ from acphys.flags import TransientState
 from acphys.math.position import Position
 from acphys.math.vector import Vector3, compass_heading
 from acphys.motion.commands import RUN_FORWARD, TURN_LEFT, TURN_RIGHT, WALK_BACKWARDS, WALK_FORWARD
-from acphys.motion.interp import unstick_from_object
 from acphys.motion.movement import (
     FLT_MAX,
     HoldKey,
@@ -42,7 +41,6 @@ from acphys.motion.movement import (
 )
 
 if TYPE_CHECKING:
-    from acphys.attachments import PositionManager
     from acphys.physics_obj import PhysicsObj
 
 #: Heading error (degrees) beyond which ``HandleMoveToPosition`` steers with an aux turn (acclient.c:345636).
@@ -281,73 +279,6 @@ class TargetInfo:
         self.status = status
 
 
-# -- the CPhysicsObj calls the manager makes that PhysicsObj does not offer (yet) -------------------
-
-
-def _get_radius(obj: PhysicsObj) -> float:
-    """Retail: CPhysicsObj::GetRadius @ 0x0050E9C0 (acclient.c:315672)"""
-    return obj.part_array.get_radius() if obj.part_array is not None else 0.0
-
-
-def _get_height(obj: PhysicsObj) -> float:
-    """Retail: CPhysicsObj::GetHeight @ 0x0050E9E0 (acclient.c:315686)"""
-    return obj.part_array.get_height() if obj.part_array is not None else 0.0
-
-
-def _is_interpolating(obj: PhysicsObj) -> bool:
-    """Retail: CPhysicsObj::IsInterpolating @ 0x0050EB50 (acclient.c:315846)"""
-    return obj.position_manager is not None and bool(obj.position_manager.is_interpolating())
-
-
-def _set_target(obj: PhysicsObj, context_id: int, object_id: int, radius: float, quantum: float) -> None:
-    """Ask the body's target manager to track ``object_id``.
-
-    Retail creates the target manager here when the body has none; acphys has
-    no target manager to create yet, so a body without one is refused.
-
-    Retail: CPhysicsObj::set_target @ 0x0050ED30 (acclient.c:315991)
-    """
-    if obj.target_manager is None:
-        raise ValueError(
-            f"body {obj.name!r} has no target manager to track object 0x{object_id:08X} with "
-            "(a move or turn to an object needs one)"
-        )
-    obj.target_manager.set_target(context_id, object_id, radius, quantum)
-
-
-def _clear_target(obj: PhysicsObj) -> None:
-    """Retail: CPhysicsObj::clear_target @ 0x0050ED90 (acclient.c:316011)"""
-    if obj.target_manager is not None:
-        obj.target_manager.clear_target()
-
-
-def _get_target_quantum(obj: PhysicsObj) -> float:
-    """Retail: CPhysicsObj::get_target_quantum @ 0x0050EDC0 (acclient.c:316031)"""
-    manager = obj.target_manager
-    if manager is None or manager.target_info is None:
-        return 0.0
-    return manager.target_info.quantum
-
-
-def _set_target_quantum(obj: PhysicsObj, new_quantum: float) -> None:
-    """Retail: CPhysicsObj::set_target_quantum @ 0x0050EDA0 (acclient.c:316021)"""
-    if obj.target_manager is not None:
-        obj.target_manager.set_target_quantum(new_quantum)
-
-
-def _get_position_manager(obj: PhysicsObj) -> PositionManager:
-    """The body's position manager.
-
-    Retail creates one here when the body has none (``MakePositionManager``);
-    acphys has no position manager to create yet, so a body without one is refused.
-
-    Retail: CPhysicsObj::get_position_manager @ 0x00512130 (acclient.c:319308)
-    """
-    if obj.position_manager is None:
-        raise ValueError(f"body {obj.name!r} has no position manager to stick to its target with")
-    return obj.position_manager
-
-
 def _params_for_motion(hold_key: HoldKey, speed: float = 1.0) -> MovementParameters:
     """Fresh default parameters without ``CANCEL_MOVETO``, with a speed and hold key: what every
     motion the manager issues carries (e.g. acclient.c:345410-345414)."""
@@ -501,8 +432,8 @@ class MoveToManager:
             return FLT_MAX
         if self.movement_params.flags & MovementFlags.USE_SPHERES:
             return cylinder_distance(
-                _get_radius(obj),
-                _get_height(obj),
+                obj.get_radius(),
+                obj.get_height(),
                 obj.position,
                 self.sought_object_radius,
                 self.sought_object_height,
@@ -542,7 +473,7 @@ class MoveToManager:
         Retail: MoveToManager::PerformMovement @ 0x0052A900 (acclient.c:346118)
         """
         self.cancel_move_to(MovementError.ACTION_CANCELLED)
-        unstick_from_object(self.physics_obj)
+        self.physics_obj.unstick_from_object()
         if mvs.type == MovementType.MOVE_TO_OBJECT:
             self.move_to_object(mvs.object_id, mvs.top_level_id, mvs.radius, mvs.height, mvs.params)
         elif mvs.type == MovementType.MOVE_TO_POSITION:
@@ -605,7 +536,7 @@ class MoveToManager:
         _copy_params(self.movement_params, params)
         self.initialized = False
         if top_level_id != obj.id:
-            _set_target(obj, 0, self.top_level_object_id, TARGET_RADIUS, 0.0)
+            obj.set_target(0, self.top_level_object_id, TARGET_RADIUS, 0.0)
             return
         self.clean_up()
         obj.stop_completely()
@@ -656,7 +587,7 @@ class MoveToManager:
         _copy_params(self.movement_params, params)
         if top_level_id != obj.id:
             self.initialized = False
-            _set_target(obj, 0, top_level_id, TARGET_RADIUS, 0.0)
+            obj.set_target(0, top_level_id, TARGET_RADIUS, 0.0)
             return
         self.clean_up()
         obj.stop_completely()
@@ -728,7 +659,7 @@ class MoveToManager:
         self.clean_up()
         if self.physics_obj is not None:
             self.physics_obj.stop_completely()
-        _get_position_manager(self.physics_obj).stick_to(top_level_id, radius, height)
+        self.physics_obj.get_position_manager().stick_to(top_level_id, radius, height)
 
     def begin_move_forward(self) -> None:
         """Start the move node: pick the command for the current distance; none means arrived
@@ -857,7 +788,7 @@ class MoveToManager:
 
         distance = self.get_current_distance()
         if not self.check_progress_made(distance):
-            if not _is_interpolating(obj) and not obj.motions_pending():
+            if not obj.is_interpolating() and not obj.motions_pending():
                 self.fail_progress_count += 1
         else:
             self.fail_progress_count = 0
@@ -878,8 +809,8 @@ class MoveToManager:
             speed = obj.velocity.length()
             if speed > TARGET_QUANTUM_MIN_SPEED:
                 time_to_get_there = distance / speed
-                if abs(time_to_get_there - _get_target_quantum(obj)) > 1.0:
-                    _set_target_quantum(obj, time_to_get_there)
+                if abs(time_to_get_there - obj.get_target_quantum()) > 1.0:
+                    obj.set_target_quantum(time_to_get_there)
 
     def _stop_aux_command(self, params: MovementParameters) -> None:
         """Stop the aux turn, if any (inline in retail, e.g. acclient.c:345638-345643)."""
@@ -917,7 +848,7 @@ class MoveToManager:
         advanced = heading_diff(curr_heading, self.previous_heading, self.current_command)
         self.previous_heading = curr_heading
         if advanced >= 180.0 or advanced <= EPSILON:
-            if not _is_interpolating(obj) and not obj.motions_pending():
+            if not obj.is_interpolating() and not obj.motions_pending():
                 self.fail_progress_count += 1
         else:
             self.fail_progress_count = 0
@@ -937,7 +868,7 @@ class MoveToManager:
             if self.aux_command:
                 self._stop_motion(self.aux_command, params)
             if self.top_level_object_id and self.movement_type != MovementType.INVALID:
-                _clear_target(obj)
+                obj.clear_target()
         self.initialize_local_variables()
 
     def clean_up_and_call_weenie(self, status: int) -> None:

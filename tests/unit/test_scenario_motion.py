@@ -207,3 +207,14 @@ def test_motion_events_need_a_motion_table() -> None:
     )
     with pytest.raises(ScenarioError, match=r"event\[0\].action: body 'r' has no motion table"):
         parse_scenario(text)
+
+
+def test_the_readme_example_scenario_runs() -> None:
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    block = readme.read_text(encoding="utf-8").split("```toml\n", 1)[1].split("```", 1)[0]
+    sim = parse_scenario(block, source="README.md")
+    sim.run()
+    walker = sim.body("walker")
+    # Walking north from 0.5 s to 3 s at 3.12 m/s, on the ground and with no velocity of its own.
+    assert walker.position.frame.origin.y - 96.0 == pytest.approx(2.5 * 3.12, abs=0.25)
+    assert walker.velocity.exactly_equals(acphys.Vector3())

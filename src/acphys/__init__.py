@@ -5,13 +5,21 @@
 >>> sim.run(until=1.0)
 >>> sim.body("skydiver").velocity.z < 0
 True
+>>> sim.body("walker").position.frame.origin.y > 60.0   # walking: animation root motion
+True
 """
 
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState
 from acphys.math import Frame, Position, Vector3
+from acphys.motion import commands
+from acphys.motion.animation import Animation, AnimData, AnimFrame
+from acphys.motion.motion_table import MotionData, MotionTable
+from acphys.motion.movement import HoldKey, MovementParameters
+from acphys.motion.weenie import Weenie
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 from acphys.scenario import ScenarioError, load_scenario, parse_scenario
+from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.setup import Setup
 from acphys.simulation import Event, Physics, Simulation
 from acphys.trace import Divergence, TraceWriter, diff_traces, read_trace
@@ -20,9 +28,16 @@ from acphys.world import ObjCell, World
 __version__ = "0.1.0"
 
 __all__ = [
+    "AnimData",
+    "AnimFrame",
+    "Animation",
     "Divergence",
     "Event",
     "Frame",
+    "HoldKey",
+    "MotionData",
+    "MotionTable",
+    "MovementParameters",
     "ObjCell",
     "ObjectInfoState",
     "PartArray",
@@ -37,7 +52,10 @@ __all__ = [
     "TransientState",
     "TransitionState",
     "Vector3",
+    "Weenie",
     "World",
+    "builtin_motion_table",
+    "commands",
     "diff_traces",
     "load_scenario",
     "parse_scenario",

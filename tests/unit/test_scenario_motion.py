@@ -218,3 +218,10 @@ def test_the_readme_example_scenario_runs() -> None:
     # Walking north from 0.5 s to 3 s at 3.12 m/s, on the ground and with no velocity of its own.
     assert walker.position.frame.origin.y - 96.0 == pytest.approx(2.5 * 3.12, abs=0.25)
     assert walker.velocity.exactly_equals(acphys.Vector3())
+
+
+def test_the_package_docstring_example_holds() -> None:
+    import doctest
+
+    result = doctest.testmod(acphys)
+    assert result.attempted >= 5 and result.failed == 0

@@ -225,3 +225,15 @@ def test_the_package_docstring_example_holds() -> None:
 
     result = doctest.testmod(acphys)
     assert result.attempted >= 5 and result.failed == 0
+
+
+def test_the_example_script_runs(capsys: pytest.CaptureFixture[str]) -> None:
+    import runpy
+
+    script = Path(__file__).resolve().parents[2] / "examples" / "walk_to_a_point.py"
+    runpy.run_path(str(script), run_name="__main__")
+    out = capsys.readouterr().out
+    assert "still moving to: False" in out
+    assert "facing 90.0 degrees" in out
+    assert "jump: error 0x0" in out
+    assert "on walkable ground: True" in out

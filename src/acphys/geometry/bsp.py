@@ -66,18 +66,11 @@ class SolidPolyHit:
 
 
 def spheres_intersect(a: Sphere, b: Sphere) -> bool:
-    """``CSphere::intersects``: strictly closer than the sum of the radii (touching is a miss).
-
-    The decompiled body (acclient.c:356350-356354) keeps only the deltas and radius sum; the
-    x87 flag test ``(c0 | c2) != 0`` is ``dist² < (r_a + r_b)²``.
+    """``CSphere::intersects``, kept under this name: see :meth:`Sphere.intersects`.
 
     Retail: CSphere::intersects @ 0x005344A0 (acclient.c:356340)
     """
-    dx = a.center.x - b.center.x
-    dy = a.center.y - b.center.y
-    dz = a.center.z - b.center.z
-    reach = a.radius + b.radius
-    return dx * dx + dy * dy + dz * dz < reach * reach
+    return a.intersects(b)
 
 
 def _plane_dist(plane: Plane, p: Vector3) -> float:

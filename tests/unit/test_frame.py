@@ -691,3 +691,19 @@ class TestHeading:
         f = Frame()
         f.set_heading(velocity.get_heading())
         assert_vec(f.get_vector_heading(), (-0.6, -0.8, 0.0))
+
+
+class TestPositionLocalToLocal:
+    """Position::localtolocal @ 0x004527F0 (acclient.c:143794): other-local, global, block shift, self-local."""
+
+    def test_a_point_in_the_next_landblock_east(self):
+        from acphys.math.position import Position
+
+        here = Position(0xA9B40001, Frame.from_heading(Vector3(180.0, 10.0, 0.0), 90.0))
+        there = Position(0xAAB40001, Frame(Vector3(4.0, 10.0, 2.0)))
+        # there's (1, 0, 0) is (5, 10, 2) in 0xAAB4, i.e. (197, 10, 2) seen from 0xA9B4: 17 m east of
+        # here's origin. Facing east (compass 90), east is the body's local +y.
+        local = here.localtolocal(there, Vector3(1.0, 0.0, 0.0))
+        assert local.x == pytest.approx(0.0, abs=1e-9)
+        assert local.y == pytest.approx(17.0, abs=1e-9)
+        assert local.z == pytest.approx(2.0, abs=1e-9)

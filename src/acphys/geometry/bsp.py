@@ -12,12 +12,16 @@ reads as "on the plane" (distance 0).
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import TYPE_CHECKING, NamedTuple, Protocol
 
 from acphys.constants import EPSILON
+from acphys.geometry.bsp_collision import BSPTreeCollisions
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+
+if TYPE_CHECKING:
+    from acphys.transition.transition import SpherePath
 
 
 def type_tag(name: str) -> int:
@@ -47,11 +51,29 @@ CELL_ENTIRELY_INSIDE = 2
 
 
 class BSPPolygon(Protocol):
-    """What a BSP leaf needs from the polygons it holds (``CPolygon``)."""
+    """What a BSP leaf needs from the polygons it holds (``CPolygon``,
+    :class:`acphys.geometry.polygon.Polygon`)."""
 
     plane: Plane
 
     def hits_sphere(self, sphere: Sphere) -> bool: ...
+
+    def pos_hits_sphere(
+        self, sphere: Sphere, movement: Vector3, contact_pt: Vector3
+    ) -> tuple[bool, bool]: ...
+
+    def walkable_hits_sphere(self, sphere: Sphere, up: Vector3, walkable_allowance: float) -> bool: ...
+
+    def check_small_walkable(self, sphere: Sphere, up: Vector3) -> bool: ...
+
+    def adjust_sphere_to_plane(
+        self, valid_pos: Sphere, movement: Vector3, walk_interp: float
+    ) -> float | None: ...
+
+    def adjust_sphere_to_poly(self, check_pos: Sphere, curr_pos: Vector3, movement: Vector3) -> float: ...
+
+    def adjust_to_placement_poly(self, struck_sphere: Sphere, other_sphere: Sphere, radius: float,
+                                 center_solid: bool, solid_check: bool) -> None: ...
 
 
 class SolidPolyHit:
@@ -63,6 +85,26 @@ class SolidPolyHit:
     def __init__(self) -> None:
         self.center_solid = False
         self.hit_poly: BSPPolygon | None = None
+
+
+class PolyHit(NamedTuple):
+    """What ``sphere_intersects_poly`` returns: the result, and its out-parameters ``polygon``
+    (the last polygon the sphere touched, heading into it or not; the caller's value if none)
+    and ``contact_pt`` (the centre's foot on the last plane in reach)."""
+
+    hit: bool
+    polygon: BSPPolygon | None
+    contact_pt: Vector3
+
+
+class _PolySearch:
+    """The in/out pointers ``polygon`` and ``contact_pt`` shared by one ``sphere_intersects_poly`` walk."""
+
+    __slots__ = ("contact_pt", "polygon")
+
+    def __init__(self, polygon: BSPPolygon | None, contact_pt: Vector3) -> None:
+        self.polygon = polygon
+        self.contact_pt = contact_pt
 
 
 def spheres_intersect(a: Sphere, b: Sphere) -> bool:
@@ -181,6 +223,87 @@ class BSPNode:
             return second.sphere_intersects_solid_poly(check_pos, radius, hit, False)
         return hit.center_solid
 
+    def sphere_intersects_poly(
+        self,
+        check_pos: Sphere,
+        movement: Vector3,
+        polygon: BSPPolygon | None = None,
+        contact_pt: Vector3 | None = None,
+    ) -> PolyHit:
+        """Whether ``check_pos``, moving by ``movement``, runs into a polygon face first.
+
+        Misses when the node's bounding sphere misses; past ``radius - EPSILON`` on one side only
+        that child is asked; straddling, the positive child is asked first and the negative one
+        only if that missed. Retail's in/out pointers are the arguments ``polygon`` (the
+        caller's starting value) and ``contact_pt`` (written in place when given) and come back
+        in the :class:`PolyHit`; a polygon touched but not headed into is recorded without a hit,
+        and the walk goes on.
+
+        Retail: BSPNODE::sphere_intersects_poly @ 0x0053CA30 (acclient.c:363521)
+        """
+        search = _PolySearch(polygon, contact_pt if contact_pt is not None else Vector3())
+        hit = self._intersects_poly(check_pos, movement, search)
+        return PolyHit(hit, search.polygon, search.contact_pt)
+
+    def _intersects_poly(self, check_pos: Sphere, movement: Vector3, search: _PolySearch) -> bool:
+        """The node walk of :meth:`sphere_intersects_poly`."""
+        if not spheres_intersect(self.sphere, check_pos):
+            return False
+        pos, neg = self._children()
+        dist = _plane_dist(self.splitting_plane, check_pos.center)
+        reach = check_pos.radius - EPSILON
+        if dist >= reach:
+            return pos._intersects_poly(check_pos, movement, search)
+        if dist <= -reach:
+            return neg._intersects_poly(check_pos, movement, search)
+        return pos._intersects_poly(check_pos, movement, search) or neg._intersects_poly(
+            check_pos, movement, search
+        )
+
+    def hits_walkable(self, path: SpherePath, valid_pos: Sphere, up: Vector3) -> bool:
+        """Whether ``valid_pos`` touches a polygon it could stand on (see the leaf's test).
+
+        Same walk as :meth:`sphere_intersects_poly`: one side past ``radius - EPSILON``, else
+        positive then negative.
+
+        Retail: BSPNODE::hits_walkable @ 0x0053CBD0 (acclient.c:363614)
+        """
+        if not spheres_intersect(self.sphere, valid_pos):
+            return False
+        pos, neg = self._children()
+        dist = _plane_dist(self.splitting_plane, valid_pos.center)
+        reach = valid_pos.radius - EPSILON
+        if dist >= reach:
+            return pos.hits_walkable(path, valid_pos, up)
+        if dist <= -reach:
+            return neg.hits_walkable(path, valid_pos, up)
+        return pos.hits_walkable(path, valid_pos, up) or neg.hits_walkable(path, valid_pos, up)
+
+    def find_walkable(
+        self, path: SpherePath, valid_pos: Sphere, movement: Vector3, up: Vector3
+    ) -> BSPPolygon | None:
+        """Back ``valid_pos`` along ``movement`` onto each walkable polygon it touches.
+
+        Straddling, both children are walked (positive first); ``valid_pos`` and
+        ``path.walk_interp`` carry each adjustment into the next test. Returns the last polygon
+        that adjusted the sphere, or None: retail's out-parameter ``changed`` is ``polygon is not
+        None`` (every retail caller starts ``polygon`` and ``changed`` cleared).
+
+        Retail: BSPNODE::find_walkable @ 0x0053CC80 (acclient.c:363662)
+        """
+        if not spheres_intersect(self.sphere, valid_pos):
+            return None
+        pos, neg = self._children()
+        dist = _plane_dist(self.splitting_plane, valid_pos.center)
+        reach = valid_pos.radius - EPSILON
+        if dist >= reach:
+            return pos.find_walkable(path, valid_pos, movement, up)
+        if dist <= -reach:
+            return neg.find_walkable(path, valid_pos, movement, up)
+        first = pos.find_walkable(path, valid_pos, movement, up)
+        later = neg.find_walkable(path, valid_pos, movement, up)
+        return later if later is not None else first
+
     def point_inside_cell_bsp(self, origin: Vector3) -> bool:
         """Cell BSP: inside unless some node on the ``pos_node`` chain has ``origin`` more than
         EPSILON behind its plane.
@@ -288,6 +411,58 @@ class BSPLeaf(BSPNode):
             return False
         return any(poly.hits_sphere(check_pos) for poly in self.polys)
 
+    def _intersects_poly(self, check_pos: Sphere, movement: Vector3, search: _PolySearch) -> bool:
+        """Polygon-less leaves and leaves whose sphere misses give false. Otherwise each polygon
+        in turn: one the sphere touches (``polygon_hits_sphere_slow_but_sure``) is recorded in
+        ``search.polygon``; the first also headed into (``N·movement < 0``) gives true.
+
+        Retail: BSPLEAF::sphere_intersects_poly @ 0x0053D580 (acclient.c:364199)
+        """
+        if not self.polys or not spheres_intersect(self.sphere, check_pos):
+            return False
+        for poly in self.polys:
+            hit, struck = poly.pos_hits_sphere(check_pos, movement, search.contact_pt)
+            if struck:
+                search.polygon = poly
+            if hit:
+                return True
+        return False
+
+    def hits_walkable(self, path: SpherePath, valid_pos: Sphere, up: Vector3) -> bool:
+        """True for the first polygon facing ``up`` more than ``path.walkable_allowance`` that
+        touches ``valid_pos`` and on which the half-radius sphere stands (``check_small_walkable``).
+
+        Retail: BSPLEAF::hits_walkable @ 0x0053D670 (acclient.c:364274)
+        """
+        if not self.polys or not spheres_intersect(self.sphere, valid_pos):
+            return False
+        return any(
+            poly.walkable_hits_sphere(valid_pos, up, path.walkable_allowance)
+            and poly.check_small_walkable(valid_pos, up)
+            for poly in self.polys
+        )
+
+    def find_walkable(
+        self, path: SpherePath, valid_pos: Sphere, movement: Vector3, up: Vector3
+    ) -> BSPPolygon | None:
+        """Every polygon walkable under ``path.walkable_allowance`` that touches ``valid_pos``
+        backs it along ``movement`` onto its plane (``adjust_sphere_to_plane``, which also lowers
+        ``path.walk_interp``); returns the last that did, None if none.
+
+        Retail: BSPLEAF::find_walkable @ 0x0053D6F0 (acclient.c:364310)
+        """
+        if not self.polys or not spheres_intersect(self.sphere, valid_pos):
+            return None
+        found: BSPPolygon | None = None
+        for poly in self.polys:
+            if not poly.walkable_hits_sphere(valid_pos, up, path.walkable_allowance):
+                continue
+            interp = poly.adjust_sphere_to_plane(valid_pos, movement, path.walk_interp)
+            if interp is not None:
+                path.walk_interp = interp
+                found = poly
+        return found
+
     def sphere_intersects_solid_poly(
         self, check_pos: Sphere, radius: float, hit: SolidPolyHit, center_check: bool
     ) -> bool:
@@ -312,8 +487,9 @@ class BSPLeaf(BSPNode):
         return f"BSPLeaf({self.leaf_index}, solid={self.solid}, polys={self.num_polys})"
 
 
-class BSPTree:
-    """Retail ``BSPTREE`` (acclient.h:31963): just the root node."""
+class BSPTree(BSPTreeCollisions):
+    """Retail ``BSPTREE`` (acclient.h:31963): just the root node. The collision queries
+    come from :class:`acphys.geometry.bsp_collision.BSPTreeCollisions`."""
 
     __slots__ = ("root_node",)
 

@@ -39,39 +39,6 @@ _MIN_WALK_INTERP = -0.1
 _UP = Vector3(0.0, 0.0, 1.0)
 
 
-def _localtolocal(pos: Position, other: Position, v: Vector3) -> Vector3:
-    """The point ``v`` local to ``other``'s frame, expressed local to ``pos``'s frame (across blocks).
-
-    Retail: Position::localtolocal @ 0x004527F0 (acclient.c:143794)
-    """
-    in_pos_block = other.frame.localtoglobal(v) + get_block_offset(pos.objcell_id, other.objcell_id)
-    return pos.frame.globaltolocal(in_pos_block)
-
-
-def _cache_localspace_sphere(path: SpherePath, p: Position, scale: float) -> None:
-    """Express the path's spheres in ``p``'s frame divided by ``scale`` (``localspace_*``).
-
-    Per sphere: the check-position centre and radius (``localspace_sphere``) and the current-position
-    centre (``localspace_curr_center``); then ``localspace_pos = p``, ``localspace_z`` = global up in
-    ``p``'s frame, and ``localspace_low_point`` = sphere 0's bottom along that axis.
-
-    Retail: SPHEREPATH::cache_localspace_sphere @ 0x0050C9D0 (acclient.c:313851)
-    """
-    if scale == 0.0:
-        raise ValueError("cache_localspace_sphere: scale must be non-zero")
-    if not path.local_sphere:
-        raise ValueError("cache_localspace_sphere: the path has no spheres")
-    inv = 1.0 / scale
-    path.localspace_sphere = [
-        Sphere(_localtolocal(p, path.check_pos, s.center) * inv, inv * s.radius) for s in path.local_sphere
-    ]
-    path.localspace_curr_center = [_localtolocal(p, path.curr_pos, s.center) * inv for s in path.local_sphere]
-    path.localspace_pos = p.copy()
-    path.localspace_z = p.frame.globaltolocalvec(_UP)
-    first = path.localspace_sphere[0]
-    path.localspace_low_point = first.center - path.localspace_z * first.radius
-
-
 def _pick_root(a: float, b: float, disc: float) -> float:
     """``(b - √D)/a``, or ``(b + √D)/a`` when the former's numerator is negative."""
     root = math.sqrt(disc)
@@ -333,7 +300,7 @@ class CylSphere:
         Retail: CCylSphere::intersects_sphere @ 0x0053B8F0 (acclient.c:362243)
         """
         path = transition.sphere_path
-        _cache_localspace_sphere(path, p, 1.0)
+        path.cache_localspace_sphere(p, 1.0)
         low_pt = p.frame.localtoglobal(self.low_pt * scale)
         low_pt = low_pt + get_block_offset(path.check_pos.objcell_id, p.objcell_id)
         return CylSphere(low_pt, scale * self.radius, scale * self.height).intersects_sphere(transition)

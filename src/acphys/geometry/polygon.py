@@ -230,6 +230,35 @@ class Polygon:
         c.set(Vector3(c.x - t * movement.x, c.y - t * movement.y, c.z - t * movement.z))
         return interp
 
+    def adjust_sphere_to_poly(self, check_pos: Sphere, curr_pos: Vector3, movement: Vector3) -> float:
+        """The fraction of ``movement`` from ``curr_pos`` at which a sphere of ``check_pos.radius``
+        first touches this plane.
+
+        1.0 when the sphere at ``curr_pos`` already reaches the plane (``radius > |dist|``);
+        0.0 when ``|N·movement| < EPSILON``; otherwise ``(±radius - dist) / N·movement``.
+
+        Hex-Rays lost the compare that picks the sign (acclient.c:359517 keeps only
+        ``if (c0 | c3) v7 = -v7``): c0|c3 is a "<=" and the only values in reach are the
+        start distance, ``N·movement`` and the radius. Read as ``dist <= 0`` -> ``-radius``: a
+        sphere starting at ``dist >= radius`` touches at ``dist = +radius``, one starting at
+        ``dist <= -radius`` at ``-radius``. ACE reads ``|movement|² <= radius²``, which for the
+        sub-radius steps a transition takes gives ``(-radius - dist)/N·movement``, a time past
+        the end of the step on the far side of the plane; ``BSPTREE::adjust_to_plane`` would then
+        place the sphere through the wall. ``N·movement <= 0`` fails the same way for every face
+        a sphere is heading into (the only faces that report a hit).
+
+        Retail: CPolygon::adjust_sphere_to_poly @ 0x00538170 (acclient.c:359497)
+        """
+        n = self.plane.N
+        dist = n.z * curr_pos.z + n.y * curr_pos.y + curr_pos.x * n.x + self.plane.d
+        if not check_pos.radius <= abs(dist):
+            return 1.0
+        along = n.z * movement.z + n.y * movement.y + movement.x * n.x
+        if not abs(along) >= EPSILON:
+            return 0.0
+        reach = -check_pos.radius if dist <= 0.0 else check_pos.radius
+        return (reach - dist) / along
+
     def adjust_to_placement_poly(self, struck_sphere: Sphere, other_sphere: Sphere, radius: float,
                                  center_solid: bool, solid_check: bool) -> None:
         """Push both spheres along N so ``struck_sphere`` ends ``radius`` from the plane.

@@ -41,3 +41,11 @@ class Position:
         """
         block = get_block_offset(self.objcell_id, other.objcell_id)
         return block + other.frame.localtoglobal(v) - self.frame.origin
+
+    def localtolocal(self, other: Position, v: Vector3) -> Vector3:
+        """The point ``v`` local to ``other``'s frame, expressed in this position's frame (across blocks).
+
+        Retail: Position::localtolocal @ 0x004527F0 (acclient.c:143794)
+        """
+        block = get_block_offset(self.objcell_id, other.objcell_id)
+        return self.frame.globaltolocal(other.frame.localtoglobal(v) + block)

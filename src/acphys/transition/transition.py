@@ -258,6 +258,85 @@ class SpherePath:
         """
         return get_block_offset(self.curr_pos.objcell_id, self.check_pos.objcell_id)
 
+    def cache_localspace_sphere(self, p: Position, scale: float) -> None:
+        """Describe the spheres in the frame of ``p`` at ``scale`` (what a BSP walk reads).
+
+        ``localspace_sphere`` (at ``check_pos``) and ``localspace_curr_center`` (at
+        ``curr_pos``) are the local spheres taken into ``p``'s frame and divided by ``scale``;
+        ``localspace_pos`` is a copy of ``p``; ``localspace_z`` the global up axis in ``p``'s
+        frame; ``localspace_low_point`` the bottom of localspace sphere 0 along it.
+
+        Retail: SPHEREPATH::cache_localspace_sphere @ 0x0050C9D0 (acclient.c:313851)
+        """
+        if scale == 0.0:
+            raise ValueError("cache_localspace_sphere: scale must not be 0")
+        inv = 1.0 / scale
+        self.localspace_sphere = []
+        self.localspace_curr_center = []
+        for sphere in self.local_sphere:
+            center = p.localtolocal(self.check_pos, sphere.center)
+            self.localspace_sphere.append(Sphere(center * inv, inv * sphere.radius))
+            self.localspace_curr_center.append(p.localtolocal(self.curr_pos, sphere.center) * inv)
+        self.localspace_pos = p.copy()
+        m = p.frame.m
+        self.localspace_z = Vector3(
+            (m[1] + m[0]) * 0.0 + m[2], (m[4] + m[3]) * 0.0 + m[5], (m[7] + m[6]) * 0.0 + m[8]
+        )
+        if self.localspace_sphere:
+            low = self.localspace_sphere[0]
+            self.localspace_low_point = low.center - self.localspace_z * low.radius
+
+    def adjust_check_pos(self, cell_id: int) -> None:
+        """Re-home ``check_pos`` into ``cell_id``; for an outdoor cell (low word below 0x100) the
+        origin and the global spheres shift by the landblock offset from ``cell_id``'s block.
+
+        Retail: SPHEREPATH::adjust_check_pos @ 0x0050CC00 (acclient.c:313961)
+        """
+        if (cell_id & 0xFFFF) < 0x100:
+            offset = get_block_offset(cell_id, self.check_pos.objcell_id)
+            self.cache_global_sphere(offset)
+            self.check_pos.frame.origin = self.check_pos.frame.origin + offset
+        self.check_pos.objcell_id = cell_id
+
+    def precipice_slide(self, collisions: CollisionInfo) -> TransitionState:
+        """Slide along the edge of the walkable polygon the sphere has walked off.
+
+        The crossed edge's inward normal (``find_crossed_edge`` on ``walkable_check_pos`` along
+        ``walkable_up``) is taken to global space by ``walkable_pos``, flipped if the step of
+        sphere 0 (since ``curr_pos``, across blocks) runs along it, and sphere 0 slides along
+        it (``CSphere::slide_sphere``). ``walkable`` is cleared either way and ``step_up`` on a
+        slide; with no crossed edge the result is COLLIDED.
+
+        Retail: SPHEREPATH::precipice_slide @ 0x0050CC80 (acclient.c:313979)
+        """
+        if self.walkable is None:
+            raise ValueError("precipice_slide: no walkable polygon recorded (SPHEREPATH::walkable)")
+        edge = self.walkable.find_crossed_edge(self.walkable_check_pos, self.walkable_up)
+        self.walkable = None
+        if edge is None:
+            return TransitionState.COLLIDED
+        self.step_up = False
+        normal = self.walkable_pos.frame.localtoglobalvec(edge)
+        block = get_block_offset(self.curr_pos.objcell_id, self.check_pos.objcell_id)
+        step = self.global_sphere[0].center - self.global_curr_center[0]
+        along = normal.z * (block.z + step.z) + (block.y + step.y) * normal.y + (block.x + step.x) * normal.x
+        if along > 0.0:
+            normal = normal * -1.0
+        return self.global_sphere[0].slide_sphere_normal(self, collisions, normal, self.global_curr_center[0])
+
+    def check_walkables(self) -> bool:
+        """Whether the sphere still stands on the recorded walkable polygon; True if none.
+
+        Halves ``walkable_check_pos.radius`` in place (each call halves it again) and asks the
+        polygon's ``check_walkable`` along ``walkable_up``.
+
+        Retail: SPHEREPATH::check_walkables @ 0x0050C3E0 (acclient.c:313467)
+        """
+        if self.walkable is None:
+            return True
+        self.walkable_check_pos.radius = self.walkable_check_pos.radius * 0.5
+        return self.walkable.check_walkable(self.walkable_check_pos, self.walkable_up)
+
     def step_up_slide(self, obj: ObjectInfo, collisions: CollisionInfo) -> TransitionState:
         """A failed step-up: drop the contact plane and slide sphere 0 along ``step_up_normal``.
 

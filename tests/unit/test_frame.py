@@ -694,7 +694,7 @@ class TestHeading:
 
 
 class TestPositionLocalToLocal:
-    """Position::localtolocal @ 0x004527F0 (acclient.c:143794): other-local, global, block shift, self-local."""
+    """Position::localtolocal @ 0x004527F0 (acclient.c:143794): other-local, global, block shift, local."""
 
     def test_a_point_in_the_next_landblock_east(self):
         from acphys.math.position import Position

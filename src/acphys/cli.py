@@ -1,4 +1,4 @@
-"""The ``acphys`` command (contract 3): run, check and diff.
+"""The ``acphys`` command (contract 3): run, check, diff and bench.
 
 Every error prints one line starting ``acphys: error:`` and exits non-zero
 (2 for bad input); no command ever shows a traceback.
@@ -7,9 +7,11 @@ Every error prints one line starting ``acphys: error:`` and exits non-zero
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import NoReturn
 
 from rich.console import Console
@@ -17,6 +19,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from acphys import __version__
+from acphys.bench import run_suite
 from acphys.flags import flag_names
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
@@ -61,6 +64,11 @@ def _build_parser() -> argparse.ArgumentParser:
     diff.add_argument("a")
     diff.add_argument("b")
     diff.add_argument("--tol", type=float, default=1e-6, help="absolute tolerance (default 1e-6)")
+
+    bench = commands.add_parser("bench", help="the performance suite: rates and ratios to a baseline")
+    bench.add_argument("--bodies", type=int, default=100, help="bodies per workload (default 100)")
+    bench.add_argument("--seconds", type=float, default=5.0, help="simulated seconds (default 5)")
+    bench.add_argument("--json", metavar="FILE", help="also write the figures as JSON")
     return parser
 
 
@@ -78,6 +86,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _run(console, args.scenario, args.trace, args.until)
         if args.command == "check":
             return _check(console, args.scenario)
+        if args.command == "bench":
+            return _bench(console, args.bodies, args.seconds, args.json)
         return _diff(console, args.a, args.b, args.tol)
     except (ScenarioError, TraceError) as error:
         return _fail(str(error), EXIT_BAD_INPUT)
@@ -158,6 +168,32 @@ def _diff(console: Console, a: str, b: str, tol: float) -> int:
         return 0
     console.print(divergence.describe(), highlight=False, soft_wrap=True)
     return EXIT_DIVERGED
+
+
+def _bench(console: Console, bodies: int, seconds: float, json_file: str | None) -> int:
+    if bodies < 1 or bodies > 100_000:
+        return _fail(f"--bodies must be between 1 and 100000, got {bodies}", EXIT_BAD_INPUT)
+    if not (math.isfinite(seconds) and 0.0 < seconds <= 3600.0):
+        return _fail(f"--seconds must be in (0, 3600], got {seconds}", EXIT_BAD_INPUT)
+    results = run_suite(bodies, seconds)
+    table = Table(title=f"acphys bench: {bodies} bodies, {seconds:g} s simulated")
+    for column in ("workload", "body-steps", "seconds", "steps/s", "vs baseline", "vs landblock real time"):
+        table.add_column(column, justify="left" if column == "workload" else "right")
+    for result in results:
+        table.add_row(
+            result.name,
+            f"{result.body_steps:,}",
+            f"{result.seconds:.3f}",
+            f"{result.rate:,.0f}",
+            f"{result.vs_baseline:.4f}",
+            f"{result.vs_realtime:.2f}x",
+        )
+    console.print(table)
+    if json_file is not None:
+        figures = json.dumps([result.as_dict() for result in results], indent=2)
+        Path(json_file).write_text(figures + "\n", encoding="utf-8")
+        console.print(f"figures: {json_file}")
+    return 0
 
 
 if __name__ == "__main__":

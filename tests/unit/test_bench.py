@@ -1,0 +1,56 @@
+"""``acphys bench``: the suite runs its workloads and reports rates and ratios (never checks a time)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from acphys.bench import LANDBLOCK_RATE, WORKLOADS, run_suite
+from acphys.cli import main
+
+
+def test_the_suite_reports_every_workload_against_the_baseline() -> None:
+    results = run_suite(bodies=4, seconds=0.5)
+    assert [r.name for r in results] == ["baseline", *WORKLOADS]
+    baseline = results[0]
+    assert baseline.vs_baseline == 1.0
+    for result in results:
+        assert result.body_steps > 0 and result.seconds > 0.0
+        assert result.rate == pytest.approx(result.body_steps / result.seconds)
+        assert result.vs_baseline == pytest.approx(result.rate / baseline.rate)
+        assert result.vs_realtime == pytest.approx(result.rate / LANDBLOCK_RATE)
+    # 4 walkers stay active: one step per body per 1/30 s at a 30-Hz driver.
+    walkers = next(r for r in results if r.name == "walkers")
+    assert walkers.body_steps == 4 * 15
+
+
+def test_the_walkers_actually_walk() -> None:
+    sim = WORKLOADS["walkers"][1](2, 1.0)
+    sim.run()
+    moved = [body.position.frame.origin.y - 20.0 for body in sim.bodies]
+    assert all(distance > 2.0 for distance in moved)
+    assert all(body.velocity.is_zero() for body in sim.bodies)
+
+
+def test_the_command_prints_a_table_and_writes_json(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out_file = tmp_path / "bench.json"
+    assert main(["bench", "--bodies", "3", "--seconds", "0.2", "--json", str(out_file)]) == 0
+    out = capsys.readouterr().out
+    assert "baseline" in out and "walkers" in out and "fallers" in out
+    figures = json.loads(out_file.read_text(encoding="utf-8"))
+    assert {f["name"] for f in figures} == {"baseline", "walkers", "fallers"}
+
+
+@pytest.mark.parametrize(
+    ("args", "message"), [(["--bodies", "0"], "--bodies"), (["--seconds", "-1"], "--seconds")]
+)
+def test_bad_arguments_are_one_line_errors(
+    args: list[str], message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["bench", *args]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("acphys: error:") and message in err and len(err.splitlines()) == 1

@@ -1,0 +1,428 @@
+"""Retail ``CSortCell`` and ``CLandCell``: the outdoor 24-m cells.
+
+``CLandCell : CSortCell : CObjCell``. A sort cell may hold one building, which adds its
+indoor cells to a sweep and collides first; a land cell holds the two terrain triangles of
+its square (from ``LandBlockStruct.cell_polygons``) and collides a sweep with them.
+
+Everything is landblock-local: a land cell's ``pos`` origin is its centre
+``((2cx+1)·12, (2cy+1)·12, 0)`` in its landblock (``ConstructPolygons``,
+acclient.c:354091-354098), and points handed to ``point_in_cell`` are in that landblock's frame.
+
+``validate_walkable`` is ``OBJECTINFO::validate_walkable``; it lives here until ``ObjectInfo``
+gets its methods with the transition issue.
+
+Not ported: the ``CPhysicsPart`` overloads of ``add_all_outside_cells`` and
+``find_transit_cells`` (they need part bounding boxes, which acphys does not have), the
+rendering members (``in_view``, ``GetViewerDistance``) and ``Trace``.
+
+Divergences from ACE's ``LandCell.cs`` (the decompilation wins):
+
+- ACE's sphere ``add_all_outside_cells`` never sets ``added_outside``; retail sets it on the
+  first call (acclient.c:355371), so later calls from each land cell's ``find_transit_cells``
+  return at once.
+- ACE's ``add_outside_cell`` skips a cell whose landblock is not loaded; retail adds the id with
+  no cell (acclient.c:354981-354984), so the id is still in the array.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Protocol
+
+from acphys.constants import CELL_LENGTH, EPSILON, FLOOR_Z, MAX_LCOORD
+from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.geometry.plane import Plane, Sidedness
+from acphys.geometry.polygon import Polygon
+from acphys.geometry.sphere import Sphere
+from acphys.math.cell_id import (
+    adjust_to_outside,
+    format_cell_id,
+    get_block_offset,
+    gid_to_lcoord,
+    lcoord_to_gid,
+)
+from acphys.math.position import Position
+from acphys.math.vector import Vector3
+from acphys.world.obj_cell import CellArray, CellTransition, ObjCell
+from acphys.world.terrain import TERRAIN_SURF_CHAR, SurfChar, WaterType
+
+if TYPE_CHECKING:
+    from acphys.physics_obj import PhysicsObj
+    from acphys.transition.collision_info import CollisionInfo
+    from acphys.transition.object_info import ObjectInfo
+    from acphys.transition.transition import SpherePath
+
+
+class Building(Protocol):
+    """What a sort cell asks of its ``CBuildingObj`` (the building side arrives separately)."""
+
+    def find_building_transit_cells(
+        self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None
+    ) -> None: ...
+
+    def find_building_collisions(self, transition: CellTransition) -> TransitionState: ...
+
+    def get_object(self, obj_iid: int) -> PhysicsObj | None: ...
+
+
+class LandTerrain(Protocol):
+    """What a land cell reads from its landblock beyond water (``CLandBlock::get_terrain``)."""
+
+    water_type: WaterType
+
+    def calc_water_depth(self, cell_id: int, point: Vector3) -> float: ...
+
+    def get_terrain(self, cell_id: int, point: Vector3) -> int: ...
+
+
+def is_valid_walkable(normal: Vector3) -> bool:
+    """A normal steep enough to stand on: ``z >= floor_z``.
+
+    Retail: CPhysicsObj::is_valid_walkable @ 0x0050F530 (acclient.c:316499)
+    """
+    return normal.z >= FLOOR_Z
+
+
+def validate_walkable(
+    object_info: ObjectInfo,
+    check_pos: Sphere,
+    contact_plane: Plane,
+    is_water: bool,
+    water_depth: float,
+    path: SpherePath,
+    collisions: CollisionInfo,
+    land_cell_id: int,
+) -> TransitionState:
+    """Rest ``check_pos`` on a terrain plane (lowered by ``water_depth``).
+
+    A viewer is pushed back out along its step when the sphere dips below the plane. A body
+    whose sphere bottom is within EPSILON of the plane touches it; below, it is lifted onto it
+    (ADJUSTED), or COLLIDED while probing walkables or when a step-down would not shorten.
+    Touching or lifted, the plane becomes the contact plane unless the body stands on
+    walkable ground, is not stepping down and the plane is too steep; a body without contact
+    that is not stepping down also gets the plane's normal as its collision normal.
+
+    Retail: OBJECTINFO::validate_walkable @ 0x0050D010 (acclient.c:314160)
+    """
+    state = object_info.state
+    normal = contact_plane.N
+    center = check_pos.center
+    if state & ObjectInfoState.IS_VIEWER:
+        dist = normal.dot(center) + contact_plane.d - check_pos.radius
+        if dist > -EPSILON:
+            return TransitionState.OK
+        step = center - path.global_curr_center[0]
+        t = dist / (step.z * normal.z + step.x * normal.x + step.y * normal.y)
+        if (t <= 0.0 or t > 1.0) and (path.begin_pos.objcell_id & 0xFFFF) >= 0x100:
+            return TransitionState.OK
+        path.add_offset_to_check_pos(step * -t)
+        collisions.set_collision_normal(normal)
+        collisions.collided_with_environment = True
+        return TransitionState.ADJUSTED
+    dist = (
+        center.y * normal.y + (center.z - check_pos.radius) * normal.z + center.x * normal.x
+        + contact_plane.d + water_depth
+    )
+    contact = not state & ObjectInfoState.ON_WALKABLE or is_valid_walkable(normal)
+    if dist >= -EPSILON:
+        if dist > EPSILON:
+            return TransitionState.OK
+        if path.step_down or contact:
+            collisions.set_contact_plane(contact_plane, is_water)
+            collisions.contact_plane_cell_id = land_cell_id
+        result = TransitionState.OK
+    else:
+        if path.check_walkable:
+            return TransitionState.COLLIDED
+        depth = dist / normal.z
+        result = TransitionState.OK
+        if path.step_down or contact:
+            collisions.set_contact_plane(contact_plane, is_water)
+            collisions.contact_plane_cell_id = land_cell_id
+            if path.step_down:
+                if path.step_down_amt * path.walk_interp == 0.0:
+                    raise ValueError("validate_walkable: stepping down with step_down_amt * walk_interp == 0")
+                interp = (1.0 - -1.0 / (path.step_down_amt * path.walk_interp) * depth) * path.walk_interp
+                if interp >= path.walk_interp or interp < -0.1:
+                    return TransitionState.COLLIDED
+                path.walk_interp = interp
+            path.add_offset_to_check_pos(Vector3(0.0, 0.0, -depth))
+            result = TransitionState.ADJUSTED
+    if not state & ObjectInfoState.CONTACT and not path.step_down:
+        collisions.set_collision_normal(normal)
+        collisions.collided_with_environment = True
+    return result
+
+
+class SortCell(ObjCell):
+    """Retail ``CSortCell``: a cell that may hold a building."""
+
+    __slots__ = ("building",)
+
+    def __init__(self, cell_id: int) -> None:
+        super().__init__(cell_id)
+        self.building: Building | None = None
+
+    def has_building(self) -> bool:
+        """Retail: CSortCell::has_building @ 0x00534000 (acclient.c:356067)"""
+        return self.building is not None
+
+    def add_building(self, building: Building) -> None:
+        """Keep ``building`` unless the cell already has one.
+
+        Retail: CSortCell::add_building @ 0x00534030 (acclient.c:356073)
+        """
+        if self.building is None:
+            self.building = building
+
+    def remove_building(self, building: Building | None = None) -> None:
+        """Drop the building (whichever is passed).
+
+        Retail: CSortCell::remove_building @ 0x00534050 (acclient.c:356080)
+        """
+        self.building = None
+
+    def find_transit_cells(
+        self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None
+    ) -> None:
+        """The building's cells the spheres reach, if there is a building.
+
+        Retail: CSortCell::find_transit_cells @ 0x00534060 (acclient.c:356086)
+        """
+        if self.building is not None:
+            self.building.find_building_transit_cells(p, spheres, cell_array, path)
+
+    def find_collisions(self, transition: CellTransition) -> TransitionState:
+        """Collide with the building, OK without one.
+
+        Retail: CSortCell::find_collisions @ 0x005340A0 (acclient.c:356106)
+        """
+        if self.building is None:
+            return TransitionState.OK
+        return self.building.find_building_collisions(transition)
+
+    def get_object(self, obj_iid: int) -> PhysicsObj | None:
+        """The cell's object with this id, else the building's.
+
+        Retail: CSortCell::get_object @ 0x005340C0 (acclient.c:356120)
+        """
+        found = super().get_object(obj_iid)
+        if found is None and self.building is not None:
+            found = self.building.get_object(obj_iid)
+        return found
+
+
+class LandCell(SortCell):
+    """Retail ``CLandCell``: an outdoor cell and its two terrain triangles.
+
+    ``polygons`` are the cell's two triangles in ``ConstructPolygons`` order; ``landblock``
+    (``myLandBlock_``) supplies water depth and terrain types.
+
+    Retail: CLandCell::CLandCell @ 0x00532C70 (acclient.c:354817)
+    """
+
+    __slots__ = ("polygons",)
+
+    def __init__(self, cell_id: int, polygons: Sequence[Polygon] = ()) -> None:
+        if (cell_id & 0xFFFF) >= 0x100 or not cell_id & 0xFFFF:
+            raise ValueError(f"{format_cell_id(cell_id)} is not an outdoor land cell id")
+        super().__init__(cell_id)
+        if len(polygons) not in (0, 2):
+            raise ValueError(f"a land cell has 2 terrain polygons, got {len(polygons)}")
+        self.polygons: tuple[Polygon, ...] = tuple(polygons)
+
+    # --- terrain --------------------------------------------------------------------------
+
+    def find_terrain_poly(self, origin: Vector3) -> Polygon | None:
+        """The first of the two triangles whose xy projection holds ``origin`` (edges inside).
+
+        Retail: CLandCell::find_terrain_poly @ 0x00532CF0 (acclient.c:354858)
+        """
+        for poly in self.polygons:
+            if poly.point_in_poly2D(origin, Sidedness.POSITIVE):
+                return poly
+        return None
+
+    def point_in_cell(self, point: Vector3) -> bool:
+        """Whether the landblock-local ``point`` lies over one of the triangles (edges count).
+
+        Retail: CLandCell::point_in_cell @ 0x00532D40 (acclient.c:354880)
+        """
+        return self.find_terrain_poly(point) is not None
+
+    def find_terrain(self, pos: Position) -> SurfChar:
+        """SOLID or WATER for the corner of this cell nearest ``pos`` (any landblock).
+
+        Retail: CLandCell::find_terrain @ 0x00532E20 (acclient.c:354950)
+        """
+        terrain = self._terrain()
+        local = Position(self.id).get_offset(pos)
+        return TERRAIN_SURF_CHAR[terrain.get_terrain(self.id, local)]
+
+    def walkable_surface_type(self, walkable: Polygon, pos: Position) -> SurfChar:
+        """SOLID unless ``walkable`` is one of this cell's triangles; then ``find_terrain``.
+
+        Retail: CLandCell::walkable_surface_type @ 0x00533190 (acclient.c:355121)
+        """
+        if not any(walkable is poly for poly in self.polygons):
+            return SurfChar.SOLID
+        return self.find_terrain(pos)
+
+    def _terrain(self) -> LandTerrain:
+        landblock = self.landblock
+        if landblock is None or not hasattr(landblock, "get_terrain"):
+            raise ValueError(f"land cell {format_cell_id(self.id)} has no landblock terrain")
+        return landblock  # type: ignore[return-value]
+
+    # --- collisions -----------------------------------------------------------------------
+
+    def find_env_collisions(self, transition: CellTransition) -> TransitionState:
+        """Collide the sweep's first sphere with the terrain triangle under its low point.
+
+        Entry restrictions first. With no triangle under the low point (it is outside this
+        cell) the result is OK. An all-water landblock stops everything but viewers and
+        missiles. Otherwise ``validate_walkable`` rests sphere 0 on the triangle's plane,
+        lowered by the water depth at the low point; the plane counts as water when the
+        cell has any.
+
+        Retail: CLandCell::find_env_collisions @ 0x00532F20 (acclient.c:354991)
+        """
+        result = self.check_entry_restrictions(transition)
+        if result != TransitionState.OK:
+            return result
+        path = transition.sphere_path
+        offset = get_block_offset(path.check_pos.objcell_id, self.id)
+        local_point = path.global_low_point - offset
+        walkable = self.find_terrain_poly(local_point)
+        if walkable is None:
+            return result
+        info = transition.object_info
+        if (
+            self.get_block_water_type() == WaterType.ENTIRELY_WATER
+            and not info.state & ObjectInfoState.IS_VIEWER
+            and not info.object.state & PhysicsState.MISSILE
+        ):
+            return TransitionState.COLLIDED
+        water_depth = self.get_water_depth(local_point)
+        sphere = path.global_sphere[0]
+        check_pos = Sphere(sphere.center - offset, sphere.radius)
+        return validate_walkable(
+            info,
+            check_pos,
+            walkable.plane,
+            self.water_type != WaterType.NOT_WATER,
+            water_depth,
+            path,
+            transition.collision_info,
+            self.id,
+        )
+
+    def find_collisions(self, transition: CellTransition) -> TransitionState:
+        """Terrain, then the building, then the shadowed objects; the first non-OK result wins.
+
+        Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
+        """
+        result = self.find_env_collisions(transition)
+        if result == TransitionState.OK:
+            result = super().find_collisions(transition)
+            if result == TransitionState.OK:
+                result = self.find_obj_collisions(transition)
+        return result
+
+    # --- cell lists -----------------------------------------------------------------------
+
+    def find_transit_cells(
+        self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None
+    ) -> None:
+        """The outdoor cells the spheres overlap (once per array), then the building's cells.
+
+        Retail: CLandCell::find_transit_cells @ 0x00533800 (acclient.c:355422)
+        """
+        LandCell.add_all_outside_cells(p, spheres, cell_array)
+        super().find_transit_cells(p, spheres, cell_array, path)
+
+    @staticmethod
+    def add_outside_cell(cell_array: CellArray, x: int, y: int) -> None:
+        """Add the land cell at global lcoord ``(x, y)`` when it is inside the world (with no
+        cell object when its landblock is not there).
+
+        Retail: CLandCell::add_outside_cell @ 0x00532EC0 (acclient.c:354974)
+        """
+        if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
+            cell_id = lcoord_to_gid(x, y)
+            cell_array.add_cell(cell_id, cell_array.source.get_cell(cell_id))
+
+    @staticmethod
+    def add_cell_block(min_x: int, min_y: int, max_x: int, max_y: int, cell_array: CellArray) -> None:
+        """Add every land cell of the lcoord rectangle, column by column.
+
+        Retail: CLandCell::add_cell_block @ 0x005331D0 (acclient.c:355139)
+        """
+        for x in range(min_x, max_x + 1):
+            for y in range(min_y, max_y + 1):
+                LandCell.add_outside_cell(cell_array, x, y)
+
+    @staticmethod
+    def check_add_cell_boundary(
+        cell_array: CellArray, pt: tuple[float, float], x: int, y: int, incell_max: float, incell_min: float
+    ) -> None:
+        """Add the neighbours of cell ``(x, y)`` that a circle reaches: ``pt`` is its centre
+        within the cell, and a coordinate above ``incell_max`` (24 - r) or below
+        ``incell_min`` (r) crosses that side; the corner cells come with the east and west
+        neighbours.
+
+        Retail: CLandCell::check_add_cell_boundary @ 0x00533260 (acclient.c:355161)
+        """
+        px, py = pt
+        add = LandCell.add_outside_cell
+        if px > incell_max:
+            add(cell_array, x + 1, y)
+            if py > incell_max:
+                add(cell_array, x + 1, y + 1)
+            if py < incell_min:
+                add(cell_array, x + 1, y - 1)
+        if px < incell_min:
+            add(cell_array, x - 1, y)
+            if py > incell_max:
+                add(cell_array, x - 1, y + 1)
+            if py < incell_min:
+                add(cell_array, x - 1, y - 1)
+        if py > incell_max:
+            add(cell_array, x, y + 1)
+        if py < incell_min:
+            add(cell_array, x, y - 1)
+
+    @staticmethod
+    def add_all_outside_cells(p: Position, spheres: Sequence[Sphere], cell_array: CellArray) -> None:
+        """Once per array: every land cell the spheres (global, in ``p``'s landblock frame)
+        overlap, sphere by sphere; the first sphere off the world ends the walk. With no
+        spheres, the cell under ``p``'s origin.
+
+        Retail: CLandCell::add_all_outside_cells @ 0x00533630 (acclient.c:355345)
+        """
+        if cell_array.added_outside:
+            return
+        cell_array.added_outside = True
+        if not spheres:
+            point = p.frame.origin.copy()
+            cell_id = adjust_to_outside(p.objcell_id, point)
+            lcoord = gid_to_lcoord(cell_id) if cell_id else None
+            if lcoord is not None:
+                LandCell.add_outside_cell(cell_array, *lcoord)
+            return
+        for sphere in spheres:
+            point = sphere.center.copy()
+            cell_id = adjust_to_outside(p.objcell_id, point)
+            if not cell_id:
+                break
+            in_cell = (
+                point.x - math.floor(point.x / CELL_LENGTH) * CELL_LENGTH,
+                point.y - math.floor(point.y / CELL_LENGTH) * CELL_LENGTH,
+            )
+            lcoord = gid_to_lcoord(cell_id)
+            if lcoord is not None:
+                LandCell.add_outside_cell(cell_array, *lcoord)
+                LandCell.check_add_cell_boundary(
+                    cell_array, in_cell, lcoord[0], lcoord[1], CELL_LENGTH - sphere.radius, sphere.radius
+                )

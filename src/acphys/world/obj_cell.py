@@ -1,0 +1,451 @@
+"""Retail ``CObjCell``, the base of every cell, with ``CELLARRAY`` and ``CShadowObj``.
+
+A cell holds the bodies whose origin is in it (``objects``) and a shadow entry for every body
+that overlaps it (``shadow_objects``); collisions are found through the shadows, so a body is
+hit from every cell it reaches into. ``find_cell_list`` gathers the cells a set of spheres
+touches: the outdoor cells under them (``LandCell.add_all_outside_cells``), then whatever each
+cell adds through its virtual ``find_transit_cells`` (buildings, portals), then the cell that
+holds the first sphere's centre.
+
+Retail reaches cells through globals (``CLandCell::Get``, ``CEnvCell::GetVisible``); acphys
+gives the ``CellArray`` a :class:`CellSource` (a ``World``), and every lookup a cell makes while
+filling the array goes through ``cell_array.source.get_cell(cell_id)``.
+
+Subclasses (``LandCell``, ``EnvCell``) override the retail virtuals with these signatures:
+``find_transit_cells(p, spheres, cell_array, path)``, ``point_in_cell(point)``,
+``find_env_collisions(transition)``, ``find_collisions(transition)``.
+
+Not ported: lights, voyeurs (detection), clip planes, visibility and the attack checks; they
+do not touch the physics tick.
+
+Divergences from ACE's ``ObjCell.cs`` (the decompilation wins):
+
+- ACE only looks for the current cell when the caller's cell reference is already non-null
+  (``if (currCell != null)``); retail tests the out-pointer itself, so the cell is found
+  whenever the caller asks for it (acclient.c:347028).
+- ACE returns as soon as the current cell is indoors, skipping the ``do_not_load_cells`` pruning;
+  retail breaks out of the loop, sets ``hits_interior_cell`` and still prunes
+  (acclient.c:347059-347063).
+- ACE prunes whenever the start cell is indoors; retail prunes only inside the
+  ``visible cell && num_sphere`` block (acclient.c:347009).
+- ACE keeps the objects and shadows in order (``List.Remove``); retail moves the last entry into
+  the freed slot (acclient.c:347789, 346851).
+- ACE's ``find_obj_collisions`` walks the shadows last-to-first and skips ethereal hits during
+  placement (marked custom); retail walks first-to-last and stops at the first result that is
+  not OK (acclient.c:347151-347162).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, NamedTuple, Protocol
+
+from acphys.flags import ObjectInfoState, TransitionState
+from acphys.geometry.sphere import Sphere
+from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id, get_block_offset
+from acphys.math.position import Position
+from acphys.math.vector import Vector3
+from acphys.transition.transition import InsertType
+from acphys.world.terrain import ENTIRELY_WATER_DEPTH, SOLID_VERTEX_WATER_DEPTH, WaterType
+
+if TYPE_CHECKING:
+    from acphys.geometry.cylsphere import CylSphere
+    from acphys.physics_obj import PhysicsObj
+    from acphys.transition.collision_info import CollisionInfo
+    from acphys.transition.object_info import ObjectInfo
+    from acphys.transition.transition import SpherePath
+
+#: ``find_cell_list`` for cylspheres fills a static array of 10 spheres (acclient.c:347351-347357).
+MAX_CYLSPHERE_CELL_LIST = 10
+
+
+class CellSource(Protocol):
+    """Where cells are looked up by id (retail ``CLandCell::Get`` / ``CEnvCell::GetVisible``)."""
+
+    def get_cell(self, cell_id: int) -> ObjCell | None: ...
+
+
+class CellTransition(Protocol):
+    """What the cell routines read from a ``CTransition``."""
+
+    object_info: ObjectInfo
+    sphere_path: SpherePath
+    collision_info: CollisionInfo
+
+
+class ShadowBody(Protocol):
+    """The body side of a shadow: ``CPhysicsObj::FindObjCollisions`` arrives with the transition."""
+
+    parent: object | None
+
+    def find_obj_collisions(self, transition: CellTransition) -> TransitionState: ...
+
+
+class BlockWater(Protocol):
+    """What a cell reads from its landblock (``myLandBlock_``) for water."""
+
+    water_type: WaterType
+
+    def calc_water_depth(self, cell_id: int, point: Vector3) -> float: ...
+
+
+class ShadowObj:
+    """Retail ``CShadowObj`` (acclient.h): a body's entry in one cell it overlaps."""
+
+    __slots__ = ("cell", "cell_id", "physobj")
+
+    def __init__(self, physobj: ShadowBody, cell_id: int = 0) -> None:
+        self.physobj = physobj
+        self.cell_id = cell_id
+        self.cell: ObjCell | None = None
+
+    def __repr__(self) -> str:
+        return f"ShadowObj({self.physobj!r}, {format_cell_id(self.cell_id)})"
+
+
+class CellInfo(NamedTuple):
+    """Retail ``CELLINFO``: a cell id and the cell (None when it is not loaded)."""
+
+    cell_id: int
+    cell: ObjCell | None
+
+
+class CellArray:
+    """Retail ``CELLARRAY``: the cells a sweep touches, each id once.
+
+    Retail: CELLARRAY::CELLARRAY @ 0x0050A920 (acclient.c:312113)
+    """
+
+    __slots__ = ("added_outside", "cells", "do_not_load_cells", "source")
+
+    def __init__(self, source: CellSource) -> None:
+        self.source = source
+        self.added_outside = False
+        self.do_not_load_cells = False
+        self.cells: list[CellInfo] = []
+
+    def __repr__(self) -> str:
+        ids = ", ".join(format_cell_id(info.cell_id) for info in self.cells)
+        return f"CellArray([{ids}])"
+
+    @property
+    def num_cells(self) -> int:
+        return len(self.cells)
+
+    def cell_ids(self) -> list[int]:
+        """The ids in array order."""
+        return [info.cell_id for info in self.cells]
+
+    def add_cell(self, cell_id: int, cell: ObjCell | None) -> None:
+        """Append ``(cell_id, cell)`` unless ``cell_id`` is already there.
+
+        Retail: CELLARRAY::add_cell @ 0x006B4FF0 (acclient.c:718895)
+        """
+        if any(info.cell_id == cell_id for info in self.cells):
+            return
+        self.cells.append(CellInfo(cell_id, cell))
+
+    def remove_cell(self, index: int) -> None:
+        """Drop entry ``index`` by moving the last entry into its slot.
+
+        Retail: CELLARRAY::remove_cell @ 0x006B4E80 (acclient.c:718761)
+        """
+        if not self.cells:
+            return
+        if not 0 <= index < len(self.cells):
+            raise ValueError(f"remove_cell: index {index} outside the {len(self.cells)} cells")
+        last = self.cells.pop()
+        if index < len(self.cells):
+            self.cells[index] = last
+
+    def clear(self) -> None:
+        """``num_cells = 0; added_outside = 0`` as ``find_cell_list`` starts (acclient.c:346987-346988)."""
+        self.cells = []
+        self.added_outside = False
+
+
+class ObjCell:
+    """Retail ``CObjCell`` (acclient.h:30915): id, position, objects and shadow objects.
+
+    ``pos`` is the cell's position (landblock-local frame); ``landblock`` is ``myLandBlock_``;
+    ``stab_list`` the ids of the cells visible from this one (env cells fill it).
+
+    Retail: CObjCell::CObjCell @ 0x0052AF70 (acclient.c:346602)
+    """
+
+    __slots__ = (
+        "id",
+        "landblock",
+        "objects",
+        "pos",
+        "restriction_obj",
+        "seen_outside",
+        "shadow_objects",
+        "stab_list",
+        "water_type",
+    )
+
+    def __init__(self, cell_id: int) -> None:
+        if isinstance(cell_id, bool) or not isinstance(cell_id, int) or not 0 <= cell_id <= 0xFFFFFFFF:
+            raise ValueError(f"cell id must be a 32-bit integer, got {cell_id!r}")
+        self.id = cell_id
+        self.water_type = WaterType.NOT_WATER
+        self.pos = Position(cell_id)
+        self.objects: list[PhysicsObj] = []
+        self.shadow_objects: list[ShadowObj] = []
+        #: Id of the object that guards entry (housing barriers); 0 for none.
+        self.restriction_obj = 0
+        self.stab_list: list[int] = []
+        self.seen_outside = False
+        self.landblock: BlockWater | None = None
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({format_cell_id(self.id)})"
+
+    @property
+    def num_objects(self) -> int:
+        return len(self.objects)
+
+    @property
+    def num_shadow_objects(self) -> int:
+        return len(self.shadow_objects)
+
+    # --- object and shadow lists ----------------------------------------------------------
+
+    def add_object(self, obj: PhysicsObj) -> None:
+        """Append ``obj`` to the object list (the voyeur notifications are not ported).
+
+        Retail: CObjCell::add_object @ 0x0052BF60 (acclient.c:347702)
+        """
+        self.objects.append(obj)
+
+    def remove_object(self, obj: PhysicsObj) -> None:
+        """Remove ``obj`` (by identity) by moving the last object into its slot; absent is a no-op.
+
+        Retail: CObjCell::remove_object @ 0x0052C040 (acclient.c:347764)
+        """
+        _swap_remove(self.objects, obj)
+
+    def get_object(self, obj_iid: int) -> PhysicsObj | None:
+        """The first object with id ``obj_iid``, or None.
+
+        Retail: CObjCell::get_object @ 0x0052B8F0 (acclient.c:347258)
+        """
+        for obj in self.objects:
+            if obj is not None and obj.id == obj_iid:
+                return obj
+        return None
+
+    def add_shadow_object(self, shadow: ShadowObj, num_shadow_cells: int = 0) -> None:
+        """Append ``shadow`` and point it at this cell (``num_shadow_cells`` is unused by retail).
+
+        Retail: CObjCell::add_shadow_object @ 0x0052B280 (acclient.c:346804)
+        """
+        self.shadow_objects.append(shadow)
+        shadow.cell = self
+
+    def remove_shadow_object(self, shadow: ShadowObj) -> None:
+        """Remove ``shadow`` (by identity), clearing its cell; the last shadow takes its slot.
+
+        Retail: CObjCell::remove_shadow_object @ 0x0052B2D0 (acclient.c:346823)
+        """
+        if _swap_remove(self.shadow_objects, shadow):
+            shadow.cell = None
+
+    # --- collisions -----------------------------------------------------------------------
+
+    def find_obj_collisions(self, transition: CellTransition) -> TransitionState:
+        """Ask each shadowed body, in list order, to collide with the transition's spheres.
+
+        Initial placement collides with nothing. Parented bodies and the moving body itself
+        are skipped; the first result other than OK is returned.
+
+        Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
+        """
+        if transition.sphere_path.insert_type == InsertType.INITIAL_PLACEMENT:
+            return TransitionState.OK
+        result = TransitionState.OK
+        mover = transition.object_info.object
+        for shadow in list(self.shadow_objects):
+            body = shadow.physobj
+            if body.parent is not None or body is mover:
+                continue
+            result = body.find_obj_collisions(transition)
+            if result != TransitionState.OK:
+                break
+        return result
+
+    def check_entry_restrictions(self, transition: CellTransition) -> TransitionState:
+        """COLLIDED without a moving object; OK unless a player's weenie meets a restriction
+        object, which needs the housing-barrier weenie calls (not ported: ValueError).
+
+        Retail: CObjCell::check_entry_restrictions @ 0x0052B6D0 (acclient.c:347102)
+        """
+        obj = transition.object_info.object
+        if obj is None:
+            return TransitionState.COLLIDED
+        if (
+            getattr(obj, "weenie_obj", None) is not None
+            and transition.object_info.state & ObjectInfoState.IS_PLAYER
+            and self.restriction_obj
+        ):
+            raise ValueError(
+                f"cell {format_cell_id(self.id)} has restriction object {self.restriction_obj:#x}: "
+                "entry restrictions (housing barriers) are not supported"
+            )
+        return TransitionState.OK
+
+    def find_env_collisions(self, transition: CellTransition) -> TransitionState:
+        """Collide with the cell's own geometry (pure virtual in ``CObjCell``)."""
+        raise NotImplementedError(f"{type(self).__name__} has no find_env_collisions")
+
+    def find_collisions(self, transition: CellTransition) -> TransitionState:
+        """Collide with everything in the cell (pure virtual in ``CObjCell``)."""
+        raise NotImplementedError(f"{type(self).__name__} has no find_collisions")
+
+    def point_in_cell(self, point: Vector3) -> bool:
+        """Whether the landblock-local ``point`` is inside the cell (pure virtual in ``CObjCell``)."""
+        raise NotImplementedError(f"{type(self).__name__} has no point_in_cell")
+
+    def find_transit_cells(
+        self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None
+    ) -> None:
+        """Add the cells the spheres reach from this one; retail's base aborts.
+
+        Retail: CObjCell::find_transit_cells @ 0x0052B070 (acclient.c:346660)
+        """
+        raise NotImplementedError(f"{type(self).__name__} has no find_transit_cells")
+
+    # --- water ----------------------------------------------------------------------------
+
+    def get_block_water_type(self) -> WaterType:
+        """The water type of the cell's landblock, NOT_WATER without one.
+
+        Retail: CObjCell::get_block_water_type @ 0x0052AD90 (acclient.c:346438)
+        """
+        return self.landblock.water_type if self.landblock is not None else WaterType.NOT_WATER
+
+    def get_water_depth(self, point: Vector3) -> float:
+        """0 for a dry cell, 0.9 for an all-water one; a partly wet one asks its landblock at
+        the block-local ``point`` (0.1 without a landblock).
+
+        Retail: CObjCell::get_water_depth @ 0x0052B8A0 (acclient.c:347232)
+        """
+        if self.water_type == WaterType.ENTIRELY_WATER:
+            return ENTIRELY_WATER_DEPTH
+        if self.water_type != WaterType.PARTIALLY_WATER:
+            return 0.0
+        if self.landblock is None:
+            return SOLID_VERTEX_WATER_DEPTH
+        return self.landblock.calc_water_depth(self.id, point)
+
+    # --- cell lists -----------------------------------------------------------------------
+
+    @staticmethod
+    def find_cell_list(
+        p: Position,
+        spheres: Sequence[Sphere],
+        cell_array: CellArray,
+        path: SpherePath | None = None,
+        want_curr_cell: bool = False,
+    ) -> ObjCell | None:
+        """Fill ``cell_array`` with the cells the global ``spheres`` (in ``p``'s landblock
+        frame) touch; with ``want_curr_cell``, return the cell holding sphere 0's centre.
+
+        From an indoor ``p`` the array starts with that cell (and ``path.hits_interior_cell``
+        is set); from outdoors with every land cell the spheres overlap. Each cell in the
+        array (including those added meanwhile) then adds its transit cells. The current
+        cell is the last one whose ``point_in_cell`` holds sphere 0's centre, or the first
+        indoor one (which sets ``hits_interior_cell``). With ``do_not_load_cells`` and an
+        indoor ``p``, cells not in the start cell's ``stab_list`` are dropped.
+
+        Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)
+        """
+        from acphys.world.land_cell import LandCell
+
+        cell_array.clear()
+        cell_id = p.objcell_id
+        visible = cell_array.source.get_cell(cell_id) if cell_id else None
+        if (cell_id & 0xFFFF) >= FIRST_ENV_CELL:
+            if path is not None:
+                path.hits_interior_cell = True
+            cell_array.add_cell(cell_id, visible)
+        else:
+            LandCell.add_all_outside_cells(p, spheres, cell_array)
+        if visible is None or not spheres:
+            return None
+        i = 0
+        while i < cell_array.num_cells:
+            cell = cell_array.cells[i].cell
+            if cell is not None:
+                cell.find_transit_cells(p, spheres, cell_array, path)
+            i += 1
+        curr_cell: ObjCell | None = None
+        if want_curr_cell:
+            for info in cell_array.cells:
+                cell = info.cell
+                if cell is None:
+                    continue
+                local_point = spheres[0].center - get_block_offset(cell_id, cell.id)
+                if cell.point_in_cell(local_point):
+                    curr_cell = cell
+                    if (cell.id & 0xFFFF) >= FIRST_ENV_CELL:
+                        if path is not None:
+                            path.hits_interior_cell = True
+                        break
+        if cell_array.do_not_load_cells and (cell_id & 0xFFFF) >= FIRST_ENV_CELL:
+            i = 0
+            while i < cell_array.num_cells:
+                kept = cell_array.cells[i].cell_id
+                if kept == visible.id or kept in visible.stab_list:
+                    i += 1
+                else:
+                    cell_array.remove_cell(i)
+        return curr_cell
+
+    @staticmethod
+    def find_cell_list_for_path(
+        cell_array: CellArray, path: SpherePath, want_check_cell: bool = True
+    ) -> ObjCell | None:
+        """``find_cell_list`` for the path's candidate: ``check_pos`` and its global spheres.
+
+        Retail: CObjCell::find_cell_list @ 0x0052B960 (acclient.c:347315)
+        """
+        return ObjCell.find_cell_list(path.check_pos, path.global_sphere, cell_array, path, want_check_cell)
+
+    @staticmethod
+    def find_cell_list_for_sphere(
+        p: Position, sphere: Sphere, cell_array: CellArray, path: SpherePath | None = None
+    ) -> None:
+        """``find_cell_list`` for one sphere given in ``p``'s local frame.
+
+        Retail: CObjCell::find_cell_list @ 0x0052B990 (acclient.c:347321)
+        """
+        global_sphere = Sphere(p.frame.localtoglobal(sphere.center), sphere.radius)
+        ObjCell.find_cell_list(p, [global_sphere], cell_array, path)
+
+    @staticmethod
+    def find_cell_list_for_cylspheres(
+        p: Position, cylspheres: Sequence[CylSphere], cell_array: CellArray, path: SpherePath | None = None
+    ) -> None:
+        """``find_cell_list`` for at most the first 10 cylspheres, each as a sphere of its
+        radius centred on its low point (placed by ``p``).
+
+        Retail: CObjCell::find_cell_list @ 0x0052B9F0 (acclient.c:347336)
+        """
+        spheres = [
+            Sphere(p.frame.localtoglobal(cyl.low_pt), cyl.radius)
+            for cyl in cylspheres[:MAX_CYLSPHERE_CELL_LIST]
+        ]
+        ObjCell.find_cell_list(p, spheres, cell_array, path)
+
+
+def _swap_remove(items: list, item: object) -> bool:
+    """Remove ``item`` (by identity) by moving the last entry into its slot; False if absent."""
+    for index, candidate in enumerate(items):
+        if candidate is item:
+            last = items.pop()
+            if index < len(items):
+                items[index] = last
+            return True
+    return False

@@ -64,7 +64,8 @@ if TYPE_CHECKING:
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
     from acphys.motion.weenie import Weenie
-    from acphys.world.world import ObjCell, World
+    from acphys.world.obj_cell import ObjCell
+    from acphys.world.world import World
 
 PS = PhysicsState
 TS = TransientState
@@ -647,14 +648,14 @@ class PhysicsObj:
         """
         if self.part_array is None:
             return
-        new_cell.objects.append(self)
+        new_cell.add_object(self)
         self.position.objcell_id = new_cell.id
         self.cell = new_cell
 
     def leave_cell(self) -> None:
         """Retail: CPhysicsObj::leave_cell @ 0x00510F50 (acclient.c:318243)"""
         if self.cell is not None:
-            self.cell.objects.remove(self)
+            self.cell.remove_object(self)
             self.cell = None
 
     def store_position(self, pos: Position) -> None:

@@ -35,6 +35,7 @@ from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_t
 from acphys.scenario.values import Ctx, ScenarioError
 from acphys.setup import BUILTIN_SETUPS, Setup
 from acphys.simulation import Simulation
+from acphys.world.terrain import MAX_LAND_HEIGHT
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
@@ -154,7 +155,8 @@ def _read_landblocks(ctx: Ctx, raw: Any, world: World) -> None:
         if landblock in seen:
             raise ctx.fail(f"{key}.id", f"landblock 0x{landblock:04X} is listed twice")
         seen.add(landblock)
-        world.set_flat_ground(landblock, read.ranged(ctx, f"{key}.height", entry["height"], -1000.0, 10000.0))
+        height = read.ranged(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
+        world.set_flat_ground(landblock, height)
 
 
 BODY_KEYS = (

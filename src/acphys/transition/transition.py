@@ -5,7 +5,7 @@ info) and the body side that drives it. Until the collision-sweep issue
 brings the CTransition machine (sub-steps, insertion, slides, steps,
 validation), :meth:`Transition.find_valid_position` is a placeholder: it
 accepts the candidate, places it in the outdoor cell that holds it, and
-rests it on the landblock's flat ground, if any.
+rests it on the landblock's terrain, if any.
 """
 
 from __future__ import annotations
@@ -25,7 +25,8 @@ from acphys.transition.object_info import ObjectInfo
 if TYPE_CHECKING:
     from acphys.geometry.polygon import Polygon
     from acphys.physics_obj import PhysicsObj
-    from acphys.world.world import ObjCell, World
+    from acphys.world.obj_cell import ObjCell
+    from acphys.world.world import World
 
 
 class InsertType(enum.IntEnum):
@@ -390,9 +391,10 @@ class Transition:
 
         Placeholder until the collision sweep: every candidate is valid. The
         end position is re-homed into the outdoor cell under it (crossing
-        landblock seams); one at or below its landblock's flat ground is
-        lifted onto it and gets that ground as its contact plane, which is
-        where retail's sweep leaves a body on flat walkable ground. A
+        landblock seams); one at or below its landblock's terrain is
+        lifted straight up onto it and gets the terrain triangle's plane as its
+        contact plane, which is where retail's sweep leaves a body resting on
+        flat walkable ground. A
         candidate off the edge of the world has no cell and fails, so the
         body keeps its origin.
 
@@ -405,12 +407,13 @@ class Transition:
         cell = self.world.get_cell(pos.objcell_id) if pos.objcell_id else None
         if cell is None:
             return False
-        ground = self.world.ground_height(pos.objcell_id)
+        ground = self.world.ground_height(pos.objcell_id, pos.frame.origin)
         if ground is not None and pos.frame.origin.z <= ground:
             pos.frame.origin.z = ground
+            normal = self.world.ground_normal(pos.objcell_id, pos.frame.origin)
             info = self.collision_info
             info.contact_plane_valid = True
-            info.contact_plane = Plane.horizontal(ground)
+            info.contact_plane = Plane.from_point(normal, pos.frame.origin)
             info.contact_plane_cell_id = pos.objcell_id
         path.curr_pos = pos
         path.curr_cell = cell

@@ -1,5 +1,7 @@
-"""The world a body moves through: cells, the clocks, and the player object."""
+"""The world a body moves through: landblocks, cells, the clocks, and the player object."""
 
-from acphys.world.world import ObjCell, World
+from acphys.world.landblock import LandBlock, Landscape
+from acphys.world.obj_cell import ObjCell
+from acphys.world.world import World
 
-__all__ = ["ObjCell", "World"]
+__all__ = ["LandBlock", "Landscape", "ObjCell", "World"]

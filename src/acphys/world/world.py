@@ -5,16 +5,24 @@ Retail keeps the clocks and the player as globals (``Timer::cur_time``,
 ``CObjectMaint::is_active``); acphys keeps them on the world, so several
 independent worlds can run side by side.
 
-Every outdoor cell of every landblock exists. A landblock may have flat
-ground at a given height (``set_flat_ground``); until the world issue brings
-terrain, objects and indoor cells, that is the only geometry there is.
+Cells come from the world's :class:`~acphys.world.landblock.Landscape`:
+landblocks added with their terrain (``add_landblock``, or ``set_flat_ground``
+for flat walkable ground) and env cells added by id. Every other outdoor cell
+of the map exists too, as a land cell without terrain: acphys's empty world,
+where nothing is underfoot.
 """
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
-from acphys.math.cell_id import format_cell_id, inbound_valid_cellid, is_outdoor, landblock_of
+from acphys.math.cell_id import FIRST_ENV_CELL, inbound_valid_cellid, is_outdoor
+from acphys.math.vector import Vector3
+from acphys.world.land_cell import LandCell
+from acphys.world.landblock import LandBlock, Landscape
+from acphys.world.obj_cell import ObjCell
+from acphys.world.terrain import HEIGHT_TABLE_SIZE, MAX_LAND_HEIGHT, NUM_VERTICES, LandBlockStruct
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -24,21 +32,21 @@ if TYPE_CHECKING:
 FIRST_OBJECT_ID = 0x80000001
 
 
-class ObjCell:
-    """Retail ``CObjCell``: a cell bodies are in. Here, an id and its objects."""
+def flat_landblock(landblock: int, height: float) -> LandBlock:
+    """Landblock ``0xXXYY`` of flat, dry ground at ``height`` metres (in [0, 800], as retail heights are).
 
-    __slots__ = ("id", "objects")
-
-    def __init__(self, cell_id: int) -> None:
-        self.id = cell_id
-        self.objects: list[PhysicsObj] = []
-
-    def __repr__(self) -> str:
-        return f"ObjCell({format_cell_id(self.id)})"
+    Every height byte is 0 and the height table holds ``height`` throughout.
+    """
+    if not 0 <= landblock <= 0xFFFF:
+        raise ValueError(f"landblock must be 0xXXYY, got 0x{landblock:X}")
+    if not (math.isfinite(height) and 0.0 <= height <= MAX_LAND_HEIGHT):
+        raise ValueError(f"ground height must be in [0, {MAX_LAND_HEIGHT:g}] m, got {height}")
+    zeros = [0] * NUM_VERTICES
+    return LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, zeros, zeros, [height] * HEIGHT_TABLE_SIZE))
 
 
 class World:
-    """The cells, the clocks and the player object of one simulation."""
+    """The cells, the clocks, the objects and the player object of one simulation."""
 
     def __init__(self) -> None:
         #: ``Timer::cur_time``: the wall clock the driver advances (seconds).
@@ -49,11 +57,14 @@ class World:
         self.player: PhysicsObj | None = None
         #: ``CObjectMaint::is_active``: the cull is on in shipped play (docs/01-physics.md §2).
         self.activity_cull = True
-        self._cells: dict[int, ObjCell] = {}
-        self._ground: dict[int, float] = {}
+        #: Landblocks with terrain, and env cells.
+        self.landscape = Landscape()
+        self._void_cells: dict[int, LandCell] = {}
         #: ``CObjectMaint``'s object table: every body made in this world, by id.
         self._objects: dict[int, PhysicsObj] = {}
         self._next_object_id = FIRST_OBJECT_ID
+
+    # -- objects ---------------------------------------------------------------------------
 
     def add_object(self, obj: PhysicsObj, object_id: int | None = None) -> int:
         """Register ``obj`` under ``object_id`` (or the next free id) and return the id."""
@@ -73,23 +84,41 @@ class World:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""
         return self._objects.get(object_id)
 
-    def set_flat_ground(self, landblock: int, height: float) -> None:
-        """Give ``landblock`` (``0xXXYY``) flat, walkable ground at ``height`` metres."""
-        if not 0 <= landblock <= 0xFFFF:
-            raise ValueError(f"landblock must be 0xXXYY, got 0x{landblock:X}")
-        if height != height or height in (float("inf"), float("-inf")):
-            raise ValueError(f"ground height must be finite, got {height}")
-        self._ground[landblock] = float(height)
+    # -- terrain and cells -----------------------------------------------------------------
 
-    def ground_height(self, cell_id: int) -> float | None:
-        """The flat ground height of the landblock holding ``cell_id``, or None where there is none."""
-        return self._ground.get(landblock_of(cell_id))
+    def add_landblock(self, landblock: LandBlock) -> None:
+        """Add a landblock with its terrain and land cells (its id must be new)."""
+        self.landscape.add_landblock(landblock)
+
+    def set_flat_ground(self, landblock: int, height: float) -> None:
+        """Give ``landblock`` (``0xXXYY``) flat, dry, walkable ground at ``height`` metres."""
+        self.add_landblock(flat_landblock(landblock, height))
+
+    def add_cell(self, cell: ObjCell) -> None:
+        """Add an env cell (indoors: id low word 0x100 and up)."""
+        self.landscape.add_cell(cell)
+
+    def ground_height(self, cell_id: int, point: Vector3) -> float | None:
+        """The terrain height under the landblock-local ``point``, or None where there is no terrain."""
+        landblock = self.landscape.get_landblock(cell_id)
+        return None if landblock is None else landblock.terrain.get_height(point)
+
+    def ground_normal(self, cell_id: int, point: Vector3) -> Vector3 | None:
+        """The terrain's unit normal under the landblock-local ``point``, or None where there is none."""
+        landblock = self.landscape.get_landblock(cell_id)
+        return None if landblock is None else landblock.terrain.get_normal(point)
 
     def get_cell(self, cell_id: int) -> ObjCell | None:
-        """The cell with this id, or None when there is none (off the world, or indoors)."""
-        cell = self._cells.get(cell_id)
-        if cell is None:
-            if not (inbound_valid_cellid(cell_id) and is_outdoor(cell_id)):
-                return None
-            cell = self._cells[cell_id] = ObjCell(cell_id)
-        return cell
+        """The cell with this id, or None (off the map, or an env cell nobody added).
+
+        An outdoor cell of a landblock without terrain is a land cell with no polygons.
+        """
+        cell = self.landscape.get_cell(cell_id)
+        if cell is not None or (cell_id & 0xFFFF) >= FIRST_ENV_CELL:
+            return cell
+        if not (inbound_valid_cellid(cell_id) and is_outdoor(cell_id)):
+            return None
+        void = self._void_cells.get(cell_id)
+        if void is None:
+            void = self._void_cells[cell_id] = LandCell(cell_id)
+        return void

@@ -10,6 +10,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
 
 if TYPE_CHECKING:
+    from acphys.geometry.bsp import BSPTree
     from acphys.motion.motion_table import MotionTable
 
 
@@ -19,6 +20,8 @@ class Setup:
 
     Shapes are in the body's local frame, before scaling; ``CPartArray``
     scales ``height``, ``radius`` and the step heights by the body's scale.
+    ``physics_bsp`` is the solid geometry of a one-part object (retail keeps
+    it on the part's ``CGfxObj``; ``has_physics_bsp`` says whether there is one).
     ``motion_table`` stands for ``default_mtable_id``.
     """
 
@@ -29,7 +32,13 @@ class Setup:
     radius: float = 0.0
     step_up_height: float = 0.0
     step_down_height: float = 0.0
+    physics_bsp: BSPTree | None = None
     motion_table: MotionTable | None = None
+
+    @property
+    def has_physics_bsp(self) -> bool:
+        """Retail ``CSetup::has_physics_bsp``."""
+        return self.physics_bsp is not None
 
 
 def human_setup() -> Setup:

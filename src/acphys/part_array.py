@@ -141,6 +141,10 @@ class PartArray:
         """Retail: CPartArray::GetCylsphere @ 0x00518090 (acclient.c:325375)"""
         return self.setup.cylspheres
 
+    def get_sorting_sphere(self) -> Sphere:
+        """Retail: CPartArray::GetSortingSphere @ 0x00518B00 (acclient.c:326267)"""
+        return self.setup.sorting_sphere
+
     def get_height(self) -> float:
         """Retail: CPartArray::GetHeight @ 0x005180B0 (acclient.c:325387)"""
         return self.setup.height * self.scale

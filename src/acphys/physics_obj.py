@@ -58,13 +58,13 @@ from acphys.motion.movement import MovementError, MovementParameters, MovementSt
 from acphys.part_array import PartArray
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.transition import Transition
+from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
 
 if TYPE_CHECKING:
     from acphys.motion.interp import MotionInterp
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
     from acphys.motion.weenie import Weenie
-    from acphys.world.obj_cell import ObjCell
     from acphys.world.world import World
 
 PS = PhysicsState
@@ -134,6 +134,9 @@ class PhysicsObj:
         self.target_manager: TargetManager | None = None
         self.particle_manager: ParticleManager | None = None
         self.script_manager: ScriptManager | None = None
+
+        #: ``shadow_objects``: this body's entry in every cell it overlaps (CShadowObj).
+        self.shadow_objects: list[ShadowObj] = []
 
         #: ``hooks``: the PhysicsObjHook list, newest first.
         self.hooks: list[PhysicsObjHook] = []
@@ -551,6 +554,12 @@ class PhysicsObj:
         self.sliding_normal = info.sliding_normal.copy()
         self._set_transient(TS.SLIDING, info.sliding_normal_valid)
         self.handle_all_collisions(info, prev_contact, prev_on_walkable)
+        if self.cell is not None:
+            if self.state & PS.HAS_PHYSICS_BSP:
+                self.calc_cross_cells()
+            elif transit.cell_array.num_cells:
+                self.remove_shadows_from_cells()
+                self.add_shadows_to_cells(transit.cell_array)
 
     def _set_transient(self, flag: TransientState, on: bool) -> None:
         if on:
@@ -963,6 +972,89 @@ class PhysicsObj:
         else:
             self.state &= ~PS.NODRAW
         return True
+
+    # -- shadows: the cells a body overlaps ---------------------------------------------------
+
+    def add_obj_to_cell(self, new_cell: ObjCell, new_frame: Frame) -> None:
+        """Put a static object into ``new_cell`` at ``new_frame`` and shadow it into every cell it overlaps.
+
+        Retail: CPhysicsObj::add_obj_to_cell @ 0x005159E0 (acclient.c:322896)
+        """
+        self.enter_cell(new_cell)
+        self.position.frame.assign(new_frame)
+        self.calc_cross_cells_static()
+
+    def calc_cross_cells_static(self) -> None:
+        """A static object's shadows: its cylspheres' cells, else its parts' bounding boxes; cells not
+        yet loaded are left out.
+
+        Retail: CPhysicsObj::calc_cross_cells_static @ 0x00515160 (acclient.c:322404)
+        """
+        cell_array = CellArray(self.world)
+        cell_array.do_not_load_cells = True
+        parts = self.part_array
+        if not self.state & PS.HAS_PHYSICS_BSP and parts is not None and parts.get_num_cylsphere():
+            ObjCell.find_cell_list_for_cylspheres(self.position, parts.get_cylsphere(), cell_array)
+        else:
+            self.find_bbox_cell_list(cell_array)
+        self.remove_shadows_from_cells()
+        self.add_shadows_to_cells(cell_array)
+
+    def calc_cross_cells(self) -> None:
+        """A body's shadows: its bounding boxes (physics-BSP objects), its cylspheres, else its
+        sorting sphere.
+
+        Retail: CPhysicsObj::calc_cross_cells @ 0x00515230 (acclient.c:322446)
+        """
+        cell_array = CellArray(self.world)
+        parts = self.part_array
+        if self.state & PS.HAS_PHYSICS_BSP:
+            self.find_bbox_cell_list(cell_array)
+        elif parts is not None and parts.get_num_cylsphere():
+            ObjCell.find_cell_list_for_cylspheres(self.position, parts.get_cylsphere(), cell_array)
+        else:
+            sphere = parts.get_sorting_sphere() if parts is not None else DUMMY_SPHERE
+            ObjCell.find_cell_list_for_sphere(self.position, sphere, cell_array)
+        self.remove_shadows_from_cells()
+        self.add_shadows_to_cells(cell_array)
+
+    def find_bbox_cell_list(self, cell_array: CellArray) -> None:
+        """The body's own cell, then every cell its parts' bounding boxes reach from there.
+
+        Retail: CPhysicsObj::find_bbox_cell_list @ 0x00510FC0 (acclient.c:318275)
+        """
+        cell_array.clear()
+        if self.cell is None:
+            return
+        cell_array.add_cell(self.cell.id, self.cell)
+        if self.part_array is None:
+            return
+        index = 0
+        while index < cell_array.num_cells:
+            cell = cell_array.cells[index].cell
+            if cell is not None:
+                self.part_array.calc_cross_cells_static(cell, cell_array)
+            index += 1
+
+    def add_shadows_to_cells(self, cell_array: CellArray) -> None:
+        """Make one shadow per cell of ``cell_array`` and enter it into that cell (if loaded).
+
+        Retail: CPhysicsObj::add_shadows_to_cells @ 0x00514AE0 (acclient.c:321977)
+        """
+        self.shadow_objects = [ShadowObj(self, info.cell_id) for info in cell_array.cells]
+        for shadow, info in zip(self.shadow_objects, cell_array.cells, strict=True):
+            if info.cell is not None:
+                info.cell.add_shadow_object(shadow, cell_array.num_cells)
+
+    def remove_shadows_from_cells(self) -> None:
+        """Take every shadow out of its cell.
+
+        Retail: CPhysicsObj::remove_shadows_from_cells @ 0x00511230 (acclient.c:318417)
+        """
+        for shadow in self.shadow_objects:
+            if shadow.cell is not None:
+                shadow.cell.remove_shadow_object(shadow)
+        self.shadow_objects = []
 
     # -- what the motion code asks of the body and its managers ----------------------------
 

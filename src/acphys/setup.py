@@ -33,6 +33,8 @@ class Setup:
     step_up_height: float = 0.0
     step_down_height: float = 0.0
     physics_bsp: BSPTree | None = None
+    #: ``sorting_sphere``: what a body without cylspheres shadows into cells with (local, unscaled).
+    sorting_sphere: Sphere = field(default_factory=lambda: Sphere(Vector3(), 0.0))
     motion_table: MotionTable | None = None
 
     @property
@@ -44,13 +46,31 @@ class Setup:
 def human_setup() -> Setup:
     """The retail human (setup 0x02000001): two spheres of radius 0.48 at z 0.475 and 1.35.
 
-    Its height, radius and step heights are DAT data acphys does not ship;
-    scenarios set them where they matter.
+    Its height, radius, step heights and sorting sphere are DAT data acphys
+    does not ship: the sorting sphere here is the smallest one around the two
+    collision spheres, and scenarios set the rest where they matter.
     """
-    return Setup(
-        name="human",
-        spheres=[Sphere(Vector3(0.0, 0.0, 0.475), 0.48), Sphere(Vector3(0.0, 0.0, 1.35), 0.48)],
-    )
+    spheres = [Sphere(Vector3(0.0, 0.0, 0.475), 0.48), Sphere(Vector3(0.0, 0.0, 1.35), 0.48)]
+    return Setup(name="human", spheres=spheres, sorting_sphere=bounding_sphere(spheres))
+
+
+def bounding_sphere(spheres: list[Sphere]) -> Sphere:
+    """The sphere around the first and last of ``spheres`` (exact for two; a zero sphere for none)."""
+    if not spheres:
+        return Sphere(Vector3(), 0.0)
+    first, last = spheres[0], spheres[-1]
+    gap = (last.center - first.center).length()
+    if gap + last.radius <= first.radius:
+        return first.copy()
+    if gap + first.radius <= last.radius:
+        return last.copy()
+    radius = (gap + first.radius + last.radius) / 2.0
+    direction = (last.center - first.center) / gap
+    center = first.center + direction * (radius - first.radius)
+    enclosing = Sphere(center, radius)
+    for sphere in spheres[1:-1]:
+        enclosing.radius = max(enclosing.radius, (sphere.center - center).length() + sphere.radius)
+    return enclosing
 
 
 #: Built-in setups by scenario name.

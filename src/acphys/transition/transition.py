@@ -354,14 +354,18 @@ class SpherePath:
 class Transition:
     """Retail ``CTransition`` (acclient.h:52329)."""
 
-    __slots__ = ("collision_info", "object", "object_info", "sphere_path", "world")
+    __slots__ = ("cell_array", "collision_info", "object", "object_info", "sphere_path", "world")
 
     def __init__(self, world: World, obj: PhysicsObj) -> None:
+        from acphys.world.obj_cell import CellArray  # imported here: the cells import this module
+
         self.world = world
         self.object = obj
         self.object_info = ObjectInfo(obj)
         self.sphere_path = SpherePath()
         self.collision_info = CollisionInfo()
+        #: The cells the swept spheres overlap at the end: where the body casts its shadows.
+        self.cell_array = CellArray(world)
 
     def init_sphere(self, spheres: list[Sphere], scale: float) -> None:
         """Copy the first two of the body's spheres, scaled, as the local spheres to sweep.
@@ -394,12 +398,15 @@ class Transition:
         landblock seams); one at or below its landblock's terrain is
         lifted straight up onto it and gets the terrain triangle's plane as its
         contact plane, which is where retail's sweep leaves a body resting on
-        flat walkable ground. A
+        flat walkable ground. The cells its spheres overlap there become the
+        transition's cell array, as retail's insertion leaves it. A
         candidate off the edge of the world has no cell and fails, so the
         body keeps its origin.
 
         Retail: CTransition::find_valid_position @ 0x0050C310 (acclient.c:313418)
         """
+        from acphys.world.obj_cell import ObjCell  # imported here: the cells import this module
+
         path = self.sphere_path
         pos = path.end_pos.copy()
         if is_outdoor(pos.objcell_id):
@@ -415,6 +422,8 @@ class Transition:
             info.contact_plane_valid = True
             info.contact_plane = Plane.from_point(normal, pos.frame.origin)
             info.contact_plane_cell_id = pos.objcell_id
+        spheres = [Sphere(pos.frame.localtoglobal(s.center), s.radius) for s in path.local_sphere]
+        ObjCell.find_cell_list(pos, spheres, self.cell_array)
         path.curr_pos = pos
         path.curr_cell = cell
         return True

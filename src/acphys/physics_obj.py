@@ -528,9 +528,11 @@ class PhysicsObj:
         path = transit.sphere_path
         info = transit.collision_info
         if path.curr_cell is None:
-            # Retail stores the position, parks the body in the lost cell and deactivates it.
-            # No sweep of this issue's empty world succeeds without a cell.
-            raise NotImplementedError("a sweep that ends in no cell needs the lost cell (world issue)")
+            self.prepare_to_leave_visibility()
+            self.store_position(path.curr_pos)
+            self.world.goto_lost_cell(self)
+            self.transient_state &= ~TS.ACTIVE
+            return
         if self.cell is path.curr_cell:
             self.position.objcell_id = path.curr_pos.objcell_id
         else:
@@ -677,6 +679,18 @@ class PhysicsObj:
             stored.objcell_id = adjust_to_outside(stored.objcell_id, stored.frame.origin)
         self.position.objcell_id = stored.objcell_id
         self.set_frame(stored.frame)
+
+    def prepare_to_leave_visibility(self) -> None:
+        """Take the body out of every cell (its shadows, the lost cell, its own cell).
+
+        Retail also queues the body for destruction by the object maintainer,
+        which is client bookkeeping, not physics.
+
+        Retail: CPhysicsObj::prepare_to_leave_visibility @ 0x00511F40 (acclient.c:319195)
+        """
+        self.remove_shadows_from_cells()
+        self.world.remove_from_lost_cell(self)
+        self.leave_cell()
 
     def enter_world(self, pos: Position) -> bool:
         """Place the body at ``pos`` in its cell and activate it (placement is not swept yet).

@@ -70,3 +70,28 @@ def test_a_moving_body_carries_its_shadows_across_a_cell_edge(world):
     assert body.position.frame.origin.x > 49.0 + 0.48
     assert _cells_holding(world, body) == {0x12}
     assert sum(1 for s in world.get_cell((LANDBLOCK << 16) | 0x12).shadow_objects if s.physobj is body) == 1
+
+
+def test_a_commit_into_no_cell_parks_the_body_in_the_lost_cell(world):
+    # SetPositionInternal with no curr_cell (acclient.c:322503, the else branch): leave visibility
+    # (shadows, own cell), store the position, GotoLostCell, clear ACTIVE.
+    from acphys.flags import TransientState as TS
+    from acphys.transition.transition import Transition
+
+    world.set_flat_ground(LANDBLOCK, 50.0)
+    body = place(world, state=PS(0), origin=(47.7, 36.0, 50.0), on_ground=True)
+    body.calc_cross_cells()
+    old_cell = body.cell
+    assert _cells_holding(world, body) == {0x0A, 0x12}
+    transit = Transition(world, body)
+    transit.sphere_path.curr_pos = Position(0xA9B40012, Frame(Vector3(50.0, 36.0, 50.0)))
+    transit.sphere_path.curr_cell = None
+    body.set_position_internal(transit)
+    assert body.cell is None and body not in old_cell.objects
+    assert _cells_holding(world, body) == set() and body.shadow_objects == []
+    assert world.lost_cell == [body]
+    assert body.position.objcell_id == 0xA9B40012 and body.position.frame.origin.x == 50.0
+    assert not body.transient_state & TS.ACTIVE
+    # Leaving visibility again takes it out of the lost cell.
+    body.prepare_to_leave_visibility()
+    assert world.lost_cell == []

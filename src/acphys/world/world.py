@@ -63,6 +63,8 @@ class World:
         #: ``CObjectMaint``'s object table: every body made in this world, by id.
         self._objects: dict[int, PhysicsObj] = {}
         self._next_object_id = FIRST_OBJECT_ID
+        #: ``CObjectMaint``'s lost cell: bodies whose position is in no cell, waiting for one.
+        self.lost_cell: list[PhysicsObj] = []
 
     # -- objects ---------------------------------------------------------------------------
 
@@ -83,6 +85,16 @@ class World:
     def get_object(self, object_id: int) -> PhysicsObj | None:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""
         return self._objects.get(object_id)
+
+    def goto_lost_cell(self, obj: PhysicsObj) -> None:
+        """Park ``obj`` in the lost cell (once), as ``CObjectMaint::GotoLostCell`` does."""
+        if obj not in self.lost_cell:
+            self.lost_cell.append(obj)
+
+    def remove_from_lost_cell(self, obj: PhysicsObj) -> None:
+        """Take ``obj`` out of the lost cell, if it is there (``CObjectMaint::RemoveFromLostCell``)."""
+        if obj in self.lost_cell:
+            self.lost_cell.remove(obj)
 
     # -- terrain and cells -----------------------------------------------------------------
 

@@ -7,29 +7,34 @@ from typing import TYPE_CHECKING
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
+from acphys.math.vector import Vector3
 from acphys.motion.movement import MovementError, MovementParameters, MovementStruct, MovementType
 from acphys.motion.sequence import Sequence
 from acphys.motion.table_manager import MotionTableManager
+from acphys.physics_part import PhysicsPart
 from acphys.setup import Setup
 
 if TYPE_CHECKING:
     from acphys.motion.motion_table import MotionTable
     from acphys.physics_obj import PhysicsObj
+    from acphys.world.obj_cell import CellArray, ObjCell
 
 
 class PartArray:
     """Retail ``CPartArray`` (acclient.h:30762): owns the setup, the sequence and the motion tables.
 
     ``scale`` is the part array's (uniform) scale, kept equal to the body's
-    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``.
+    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``. ``parts`` holds the setup's one part
+    (acphys setups have one; retail ``InitParts`` makes ``setup->num_parts``).
     """
 
-    __slots__ = ("motion_table_manager", "owner", "scale", "sequence", "setup")
+    __slots__ = ("motion_table_manager", "owner", "parts", "scale", "sequence", "setup")
 
     def __init__(self, setup: Setup, owner: PhysicsObj | None = None) -> None:
         self.setup = setup
         self.owner = owner
         self.scale = 1.0
+        self.parts: list[PhysicsPart] = [PhysicsPart(setup)]
         self.sequence = Sequence()
         self.sequence.set_object(owner)
         self.motion_table_manager: MotionTableManager | None = None
@@ -160,3 +165,58 @@ class PartArray:
     def get_step_down_height(self) -> float:
         """Retail: CPartArray::GetStepDownHeight @ 0x005180F0 (acclient.c:325413)"""
         return self.setup.step_down_height * self.scale
+
+    # -- the parts ------------------------------------------------------------------------
+
+    def set_scale_internal(self, new_scale: float) -> None:
+        """Take ``new_scale`` and give it to every part's ``gfxobj_scale`` (acphys setups have no
+        per-part ``default_scale`` to multiply it by).
+
+        Retail: CPartArray::SetScaleInternal @ 0x00518A00 (acclient.c:326181)
+        """
+        self.scale = new_scale
+        for part in self.parts:
+            part.gfxobj_scale = Vector3(new_scale, new_scale, new_scale)
+
+    def set_cell_id(self, cell_id: int) -> None:
+        """Retail: CPartArray::SetCellID @ 0x00517DD0 (acclient.c:325145)"""
+        for part in self.parts:
+            part.pos.objcell_id = cell_id
+
+    def set_frame(self, frame: Frame) -> None:
+        """Place the parts at the body's ``frame`` (lights are not ported).
+
+        Retail: CPartArray::SetFrame @ 0x00519310 (acclient.c:326765)
+        """
+        self.update_parts(frame)
+
+    def update_parts(self, frame: Frame) -> None:
+        """Each part's frame is ``frame`` combined with its frame in the current animation frame
+        (or placement frame), whose offset is scaled by ``scale`` (``Frame::combine`` with a
+        scale, acclient.c:326562); only as many parts as both have.
+
+        With neither (retail setups always bring a placement frame; acphys ones have none) the
+        single part sits at the setup origin, so its frame is ``frame`` itself.
+
+        Retail: CPartArray::UpdateParts @ 0x005190F0 (acclient.c:326600)
+        """
+        anim_frame = self.sequence.get_curr_animframe()
+        if anim_frame is None:
+            for part in self.parts:
+                part.pos.frame.assign(frame)
+            return
+        for part, part_frame in zip(self.parts, anim_frame.frames, strict=False):
+            offset = part_frame.copy()
+            offset.origin = offset.origin * self.scale
+            part.pos.frame.combine(frame, offset)
+
+    def calc_cross_cells_static(self, cell: ObjCell, cell_array: CellArray) -> None:
+        """Add the cells the parts' bounding boxes reach from ``cell`` (its parts overload of
+        ``find_transit_cells``; the ``CObjCell`` base aborts, acclient.c:346666; here an error).
+
+        Retail: CPartArray::calc_cross_cells_static @ 0x00518160 (acclient.c:325457)
+        """
+        find = getattr(cell, "find_transit_cells_for_parts", None)
+        if find is None:
+            raise NotImplementedError(f"{type(cell).__name__} has no find_transit_cells for parts")
+        find(self.parts, cell_array)

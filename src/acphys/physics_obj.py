@@ -476,7 +476,7 @@ class PhysicsObj:
         """
         self.scale = new_scale
         if self.part_array is not None:
-            self.part_array.scale = new_scale
+            self.part_array.set_scale_internal(new_scale)
 
     # -- the commit ------------------------------------------------------------------------
 
@@ -493,6 +493,8 @@ class PhysicsObj:
         if not committed.is_valid() and committed.is_valid_except_for_heading():
             committed.qw = committed.qx = committed.qy = committed.qz = 0.0
         self.position.frame.assign(committed)
+        if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
+            self.part_array.set_frame(self.position.frame)
 
     def transition(self, old_pos: Position, new_pos: Position) -> Transition | None:
         """Sweep the body's spheres from ``old_pos`` to ``new_pos``; None when no valid position exists.
@@ -661,6 +663,8 @@ class PhysicsObj:
             return
         new_cell.add_object(self)
         self.position.objcell_id = new_cell.id
+        if not self.state & PS.PARTICLE_EMITTER:
+            self.part_array.set_cell_id(new_cell.id)
         self.cell = new_cell
 
     def leave_cell(self) -> None:
@@ -996,6 +1000,8 @@ class PhysicsObj:
         """
         self.enter_cell(new_cell)
         self.position.frame.assign(new_frame)
+        if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
+            self.part_array.set_frame(self.position.frame)
         self.calc_cross_cells_static()
 
     def calc_cross_cells_static(self) -> None:

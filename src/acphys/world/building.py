@@ -8,8 +8,7 @@ through a door reaches the env cell by ``find_building_transit_cells``.
 
 Retail's ``CBuildingObj`` derives from ``CPhysicsObj``; a building only uses its position, its
 one part and its cell, so here it is a small class of its own holding the shell's physics BSP
-(building-local, with the part's scale). Not ported: the leaf cells and shadow parts (drawing),
-and the ``CPhysicsPart`` overload of ``find_building_transit_cells``.
+(building-local, with the part's scale). Not ported: the leaf cells and shadow parts (drawing).
 
 Divergences from ACE (the decompilation wins):
 
@@ -40,6 +39,7 @@ if TYPE_CHECKING:
     from acphys.geometry.bsp import BSPTree
     from acphys.geometry.sphere import Sphere
     from acphys.physics_obj import PhysicsObj
+    from acphys.physics_part import PhysicsPart
     from acphys.transition.transition import SpherePath
     from acphys.world.land_cell import SortCell
 
@@ -223,6 +223,19 @@ class BuildingObj:
             other = portal.get_other_cell(cell_array.source)
             if isinstance(other, EnvCell):
                 other.check_building_transit(portal.other_portal_id, p, spheres, cell_array, path)
+
+    def find_building_transit_cells_for_parts(
+        self, parts: Sequence[PhysicsPart], cell_array: CellArray
+    ) -> None:
+        """Through each door whose env cell is there, let that cell check the parts' bounding
+        boxes (``EnvCell.check_building_transit_for_parts`` with the door's ``other_portal_id``).
+
+        Retail: CBuildingObj::find_building_transit_cells @ 0x006B52A0 (acclient.c:719091)
+        """
+        for portal in self.portals:
+            other = portal.get_other_cell(cell_array.source)
+            if isinstance(other, EnvCell):
+                other.check_building_transit_for_parts(portal.other_portal_id, parts, cell_array)
 
     def get_object(self, obj_iid: int) -> PhysicsObj | None:
         """The object ``obj_iid`` in the building's cells, searched door by door through the

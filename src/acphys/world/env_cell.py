@@ -10,9 +10,11 @@ portal polygon's plane, 0 the negative side (``CEnvCell::find_transit_cells``, a
 Lookups retail makes through the global ``CEnvCell::GetVisible`` go through
 ``cell_array.source.get_cell`` (see :mod:`acphys.world.obj_cell`).
 
-Not ported: drawing (surfaces, drawing BSP, light arrays, clip planes, visibility), DAT unpacking
-beyond the portal flag word, and the ``CPhysicsPart`` overloads of ``find_transit_cells`` and
-``check_building_transit`` (acphys has no parts with bounding boxes yet).
+The ``CPhysicsPart`` overloads (``find_transit_cells_for_parts``,
+``check_building_transit_for_parts``) carry a static object's bounding boxes through portals.
+
+Not ported: drawing (surfaces, drawing BSP, light arrays, clip planes, visibility) and DAT
+unpacking beyond the portal flag word.
 
 Divergences from ACE's ``EnvCell.cs`` (the decompilation wins):
 
@@ -21,6 +23,11 @@ Divergences from ACE's ``EnvCell.cs`` (the decompilation wins):
 - ACE's sphere ``check_building_transit`` adds the cell once per sphere inside; retail stops at
   the first such sphere (acclient.c:348138-348149). ``add_cell`` ignores repeats, so only the
   work differs.
+- ACE's parts ``check_building_transit`` takes a box wholly on the portal's *other* side
+  (``Positive`` with ``PortalSide``, ``Negative`` without); retail takes a box crossing the
+  portal plane or wholly on the side of ``portal_side``'s value read as a ``Sidedness``
+  (acclient.c:348221-348222), which for a door (``portal_side`` 0: outside negative) is the
+  room's side.
 """
 
 from __future__ import annotations
@@ -31,10 +38,12 @@ from typing import TYPE_CHECKING
 from acphys.constants import EPSILON
 from acphys.flags import ObjectInfoState, TransitionState
 from acphys.geometry.bsp import CELL_OUTSIDE
+from acphys.geometry.plane import Plane, Sidedness
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.physics_part import BBox
 from acphys.transition.transition import InsertType
 from acphys.world.obj_cell import CellArray, CellSource, CellTransition, ObjCell
 
@@ -43,6 +52,7 @@ if TYPE_CHECKING:
     from acphys.geometry.polygon import Polygon
     from acphys.math.position import Position
     from acphys.physics_obj import PhysicsObj
+    from acphys.physics_part import PhysicsPart
     from acphys.transition.transition import SpherePath
 
 #: ``other_cell_id`` of a portal that opens to the outdoor cells (``-1``, acclient.c:348301).
@@ -195,6 +205,23 @@ def _portal_dist(portal: Polygon, local: Vector3) -> float:
     return local.y * n.y + local.z * n.z + local.x * n.x + portal.plane.d
 
 
+def intersect_box(plane: Plane, box: BBox) -> Sidedness:
+    """POSITIVE or NEGATIVE when all eight corners of ``box`` are more than EPSILON on that side
+    of ``plane``, else CROSSING (a corner within EPSILON counts as crossing; never IN_PLANE).
+
+    Retail: Plane::intersect_box @ 0x005AA170 (acclient.c:467717)
+    """
+    sides = {plane.which_side2(c, 0.0, EPSILON) for c in box.corners()}
+    if len(sides) == 1 and Sidedness.IN_PLANE not in sides:
+        return sides.pop()
+    return Sidedness.CROSSING
+
+
+def _part_portal_dist(cell_pos: Position, part: PhysicsPart, sphere: Sphere, portal: Polygon) -> float:
+    """The signed distance from ``portal``'s plane to the part's sphere centre, in the cell's frame."""
+    return _portal_dist(portal, cell_pos.localtolocal(part.pos, sphere.center))
+
+
 class EnvCell(ObjCell):
     """Retail ``CEnvCell`` (acclient.h:32072): an indoor cell.
 
@@ -319,6 +346,87 @@ class EnvCell(ObjCell):
             from acphys.world.land_cell import LandCell
 
             LandCell.add_all_outside_cells(p, spheres, cell_array)
+
+    def find_transit_cells_for_parts(self, parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:
+        """Add the cells the parts' bounding boxes reach through this cell's portals.
+
+        Portal by portal, the first part that gets through decides. A part (with a sphere) gets
+        through when its sphere is not wholly on this cell's side of the portal plane (more than
+        ``radius + EPSILON`` negative for ``portal_side`` 1, positive for 0) and its box, in this
+        cell's frame, is not wholly on the ``Sidedness`` equal to ``portal_side``. Then: a portal
+        to the outside marks the outdoor cells for after the loop (``add_all_outside_cells`` for
+        the parts); an unloaded other cell is added as an id; a loaded one is added when the box,
+        in its frame, intersects its cell BSP, and otherwise the next part is tried.
+
+        Retail: CEnvCell::find_transit_cells @ 0x0052CAE0 (acclient.c:348406)
+        """
+        check_outside = False
+        for portal in self.portals:
+            plane = portal.portal.plane
+            side = portal.portal_side
+            for part in parts:
+                sphere = part.get_sphere()
+                if sphere is None:
+                    continue
+                reach = sphere.radius + EPSILON
+                dist = _part_portal_dist(self.pos, part, sphere, portal.portal)
+                if (side == 0 and dist > reach) or (side == 1 and dist < -reach):
+                    continue
+                bbox = part.get_bounding_box()
+                if intersect_box(plane, BBox.local_to_local(bbox, part.pos, self.pos)) == side:
+                    continue
+                if portal.other_cell_id == OUTSIDE_CELL_ID:
+                    check_outside = True
+                    break
+                other = portal.get_other_cell(cell_array.source)
+                if not isinstance(other, EnvCell):
+                    cell_array.add_cell(portal.other_cell_id, None)
+                    break
+                cell_box = BBox.local_to_local(bbox, part.pos, other.pos)
+                if other.structure.box_intersects_cell(cell_box.min, cell_box.max):
+                    cell_array.add_cell(other.id, other)
+                    break
+        if check_outside:
+            from acphys.world.land_cell import LandCell
+
+            LandCell.add_all_outside_cells_for_parts(parts, cell_array)
+
+    def check_building_transit_for_parts(
+        self, portal_id: int, parts: Sequence[PhysicsPart], cell_array: CellArray
+    ) -> None:
+        """From a building door into this cell (through this cell's portal ``portal_id``): the
+        first part (with a sphere) whose sphere is not wholly on the outside of the portal plane
+        (more than ``radius + EPSILON`` positive for ``portal_side`` 1, negative for 0), whose box
+        in this cell's frame crosses the plane or lies wholly on the ``Sidedness`` equal to
+        ``portal_side``, and whose box intersects the cell BSP adds this cell, and the cells the
+        parts reach from it (``find_transit_cells_for_parts``). ``portal_id < 0``: nothing.
+
+        Retail: CEnvCell::check_building_transit @ 0x0052C680 (acclient.c:348153)
+        """
+        if portal_id < 0:
+            return
+        if portal_id >= len(self.portals):
+            count = len(self.portals)
+            raise ValueError(f"{format_cell_id(self.id)} has {count} portals, no portal {portal_id}")
+        portal = self.portals[portal_id]
+        plane = portal.portal.plane
+        side = portal.portal_side
+        for part in parts:
+            sphere = part.get_sphere()
+            if sphere is None:
+                continue
+            reach = sphere.radius + EPSILON
+            dist = _part_portal_dist(self.pos, part, sphere, portal.portal)
+            if (side == 1 and dist > reach) or (side == 0 and dist < -reach):
+                continue
+            box = BBox.local_to_local(part.get_bounding_box(), part.pos, self.pos)
+            where = intersect_box(plane, box)
+            if where not in (Sidedness.CROSSING, side):
+                continue
+            if self.structure.box_intersects_cell(box.min, box.max):
+                cell_array.add_cell(self.id, self)
+                self.find_transit_cells_for_parts(parts, cell_array)
+                return
 
     def check_building_transit(
         self,

@@ -11,9 +11,14 @@ acclient.c:354091-354098), and points handed to ``point_in_cell`` are in that la
 ``validate_walkable`` is ``OBJECTINFO::validate_walkable``; it lives here until ``ObjectInfo``
 gets its methods with the transition issue.
 
-Not ported: the ``CPhysicsPart`` overloads of ``add_all_outside_cells`` and
-``find_transit_cells`` (they need part bounding boxes, which acphys does not have), the
-rendering members (``in_view``, ``GetViewerDistance``) and ``Trace``.
+The ``CPhysicsPart`` overloads (``find_transit_cells_for_parts``,
+``add_all_outside_cells_for_parts``) are what a static object with solid geometry shadows into
+cells with (``CPartArray::calc_cross_cells_static``): the land cells its parts' bounding boxes
+cover, and the building's cells the boxes reach through its doors.
+
+Not ported: the rendering members (``in_view``, ``GetViewerDistance``), ``Trace``, and the
+``Always2D`` branch of the parts ``add_all_outside_cells`` (a sprite part's sphere; acphys parts
+are never 2D, see :meth:`acphys.physics_part.PhysicsPart.always_2d`).
 
 Divergences from ACE's ``LandCell.cs`` (the decompilation wins):
 
@@ -22,6 +27,10 @@ Divergences from ACE's ``LandCell.cs`` (the decompilation wins):
   return at once.
 - ACE's ``add_outside_cell`` skips a cell whose landblock is not loaded; retail adds the id with
   no cell (acclient.c:354981-354984), so the id is still in the array.
+- ACE's parts ``add_all_outside_cells`` anchors the block on every part in turn and adds a block
+  per part; retail anchors it on the first part's land cell (and adds nothing when that land
+  cell is not loaded) and adds one block around all the boxes (acclient.c:355255-355337). With
+  acphys's one part the cells are the same.
 """
 
 from __future__ import annotations
@@ -44,11 +53,13 @@ from acphys.math.cell_id import (
 )
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.physics_part import BBox
 from acphys.world.obj_cell import CellArray, CellTransition, ObjCell
 from acphys.world.terrain import TERRAIN_SURF_CHAR, SurfChar, WaterType
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
+    from acphys.physics_part import PhysicsPart
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
@@ -59,6 +70,10 @@ class Building(Protocol):
 
     def find_building_transit_cells(
         self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None
+    ) -> None: ...
+
+    def find_building_transit_cells_for_parts(
+        self, parts: Sequence[PhysicsPart], cell_array: CellArray
     ) -> None: ...
 
     def find_building_collisions(self, transition: CellTransition) -> TransitionState: ...
@@ -192,6 +207,14 @@ class SortCell(ObjCell):
         """
         if self.building is not None:
             self.building.find_building_transit_cells(p, spheres, cell_array, path)
+
+    def find_transit_cells_for_parts(self, parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:
+        """The building's cells the parts' bounding boxes reach, if there is a building.
+
+        Retail: CSortCell::find_transit_cells @ 0x00534080 (acclient.c:356096)
+        """
+        if self.building is not None:
+            self.building.find_building_transit_cells_for_parts(parts, cell_array)
 
     def find_collisions(self, transition: CellTransition) -> TransitionState:
         """Collide with the building, OK without one.
@@ -342,6 +365,15 @@ class LandCell(SortCell):
         LandCell.add_all_outside_cells(p, spheres, cell_array)
         super().find_transit_cells(p, spheres, cell_array, path)
 
+    def find_transit_cells_for_parts(self, parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:
+        """The land cells the parts' bounding boxes cover (once per array), then the building's
+        cells.
+
+        Retail: CLandCell::find_transit_cells @ 0x00533840 (acclient.c:355432)
+        """
+        LandCell.add_all_outside_cells_for_parts(parts, cell_array)
+        super().find_transit_cells_for_parts(parts, cell_array)
+
     @staticmethod
     def add_outside_cell(cell_array: CellArray, x: int, y: int) -> None:
         """Add the land cell at global lcoord ``(x, y)`` when it is inside the world (with no
@@ -426,3 +458,38 @@ class LandCell(SortCell):
                 LandCell.check_add_cell_boundary(
                     cell_array, in_cell, lcoord[0], lcoord[1], CELL_LENGTH - sphere.radius, sphere.radius
                 )
+
+    @staticmethod
+    def add_all_outside_cells_for_parts(parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:
+        """Once per array: every land cell under the parts' bounding boxes.
+
+        The first part's origin, re-homed outdoors, names the anchor land cell; nothing is added
+        when it is off the world or that cell is not there. Each part's box is taken into the
+        anchor's landblock (``BBox::LocalToGlobal``: corners through the part's frame, unscaled)
+        and floored to cell columns and rows there (``floor(c / 24)``); the block of cells from
+        the lowest to the highest, always holding the anchor, is added column by column.
+
+        Retail: CLandCell::add_all_outside_cells @ 0x00533360 (acclient.c:355191)
+        """
+        if cell_array.added_outside:
+            return
+        cell_array.added_outside = True
+        if not parts:
+            return
+        first = parts[0]
+        cell_id = adjust_to_outside(first.pos.objcell_id, first.pos.frame.origin.copy())
+        anchor = cell_array.source.get_cell(cell_id) if cell_id else None
+        lcoord = gid_to_lcoord(cell_id) if isinstance(anchor, LandCell) else None
+        if anchor is None or lcoord is None:
+            return
+        index = (cell_id & 0xFFFF) - 1
+        lx, ly = index >> 3, index & 7
+        min_x = min_y = max_x = max_y = 0
+        for part in parts:
+            box = BBox.local_to_global(part.get_bounding_box(), part.pos, anchor.pos)
+            min_x = min(min_x, math.floor(box.min.x / CELL_LENGTH) - lx)
+            min_y = min(min_y, math.floor(box.min.y / CELL_LENGTH) - ly)
+            max_x = max(max_x, math.floor(box.max.x / CELL_LENGTH) - lx)
+            max_y = max(max_y, math.floor(box.max.y / CELL_LENGTH) - ly)
+        x, y = lcoord
+        LandCell.add_cell_block(x + min_x, y + min_y, x + max_x, y + max_y, cell_array)

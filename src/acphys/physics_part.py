@@ -1,0 +1,177 @@
+"""``CPhysicsPart``: one part of a body, placed in the world, with its gfx object's bounding box.
+
+Retail keeps a part's geometry on its ``CGfxObj``; acphys has no gfx objects, so a part reads
+its setup (acphys setups have exactly one part, at the setup origin):
+
+- the bounding box (``CGfxObj::gfx_bound_box``) is the box around the vertices of the setup's
+  ``physics_bsp`` polygons (retail: around the gfx object's whole vertex array); a setup without
+  one gets the box around its spheres (centre ± radius) and cylspheres (``low_pt`` ± radius
+  across, ``low_pt.z`` to ``low_pt.z + height`` up); a setup with neither, the zero box;
+- ``physics_sphere`` is the physics BSP's root sphere, as retail sets it (``CGfxObj::Serialize``,
+  acclient.c:356682); ``drawing_sphere``,
+  which retail takes from the drawing BSP, is here the setup's sorting sphere (None when it has
+  no radius).
+
+The box is in the part's local frame and is *not* scaled: ``GetBoundingBox`` returns the gfx
+object's box as is and ``BBox::LocalToGlobal`` / ``LocalToLocal`` move it by the part's frame
+only, so a scaled object shadows into cells by its unscaled box.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from acphys.math.cell_id import get_block_offset
+from acphys.math.position import Position
+from acphys.math.vector import Vector3
+
+if TYPE_CHECKING:
+    from acphys.geometry.bsp import BSPNode
+    from acphys.geometry.sphere import Sphere
+    from acphys.setup import Setup
+
+
+class BBox:
+    """Retail ``BBox``: ``m_vMin`` and ``m_vMax``."""
+
+    __slots__ = ("max", "min")
+
+    def __init__(self, box_min: Vector3, box_max: Vector3) -> None:
+        self.min = box_min.copy()
+        self.max = box_max.copy()
+
+    def __repr__(self) -> str:
+        return f"BBox({self.min!r}, {self.max!r})"
+
+    def corners(self) -> tuple[Vector3, ...]:
+        """The eight corners, min and max first (the order ``LocalToGlobal`` visits them)."""
+        lo, hi = self.min, self.max
+        return (
+            lo,
+            hi,
+            Vector3(hi.x, hi.y, lo.z),
+            Vector3(hi.x, lo.y, hi.z),
+            Vector3(lo.x, hi.y, hi.z),
+            Vector3(lo.x, hi.y, lo.z),
+            Vector3(hi.x, lo.y, lo.z),
+            Vector3(lo.x, lo.y, hi.z),
+        )
+
+    def adjust_bbox(self, v: Vector3) -> None:
+        """Grow the box to hold ``v``.
+
+        Retail: BBox::AdjustBBox @ 0x00534150 (acclient.c:356168)
+        """
+        self.min.x = min(self.min.x, v.x)
+        self.min.y = min(self.min.y, v.y)
+        self.min.z = min(self.min.z, v.z)
+        self.max.x = max(self.max.x, v.x)
+        self.max.y = max(self.max.y, v.y)
+        self.max.z = max(self.max.z, v.z)
+
+    @classmethod
+    def around(cls, points: list[Vector3]) -> BBox:
+        """The box around ``points`` (the first point, then ``adjust_bbox``); zero box for none.
+
+        Retail: CGfxObj::init_end @ 0x00534200 (acclient.c:356199)
+        """
+        if not points:
+            return cls(Vector3(), Vector3())
+        box = cls(points[0], points[0])
+        for p in points[1:]:
+            box.adjust_bbox(p)
+        return box
+
+    @classmethod
+    def local_to_global(cls, from_box: BBox, from_pos: Position, to_pos: Position) -> BBox:
+        """The axis-aligned box around ``from_box``'s corners taken from ``from_pos``'s frame into
+        ``to_pos``'s landblock (``to_pos``'s frame is not used, only its cell id).
+
+        Retail: BBox::LocalToGlobal @ 0x005B2120 (acclient.c:476912)
+        """
+        block = get_block_offset(to_pos.objcell_id, from_pos.objcell_id)
+        return cls.around([from_pos.frame.localtoglobal(c) + block for c in from_box.corners()])
+
+    @classmethod
+    def local_to_local(cls, from_box: BBox, from_pos: Position, to_pos: Position) -> BBox:
+        """The axis-aligned box around ``from_box``'s corners taken from ``from_pos``'s frame into
+        ``to_pos``'s frame (across landblocks).
+
+        Retail: BBox::LocalToLocal @ 0x005B1E60 (acclient.c:476802)
+        """
+        return cls.around([to_pos.localtolocal(from_pos, c) for c in from_box.corners()])
+
+
+def _bsp_vertices(node: BSPNode | None, out: list[Vector3]) -> None:
+    if node is None:
+        return
+    for poly in node.polys:
+        out.extend(getattr(poly, "vertices", ()))
+    _bsp_vertices(node.pos_node, out)
+    _bsp_vertices(node.neg_node, out)
+
+
+def gfx_bound_box(setup: Setup) -> BBox:
+    """The part's local bounding box from ``setup`` (see the module docstring)."""
+    if setup.physics_bsp is not None:
+        points: list[Vector3] = []
+        _bsp_vertices(setup.physics_bsp.root_node, points)
+        return BBox.around(points)
+    points = []
+    for sphere in setup.spheres:
+        r = Vector3(sphere.radius, sphere.radius, sphere.radius)
+        points += [sphere.center - r, sphere.center + r]
+    for cyl in setup.cylspheres:
+        low = cyl.low_pt
+        points += [
+            Vector3(low.x - cyl.radius, low.y - cyl.radius, low.z),
+            Vector3(low.x + cyl.radius, low.y + cyl.radius, low.z + cyl.height),
+        ]
+    return BBox.around(points)
+
+
+class PhysicsPart:
+    """Retail ``CPhysicsPart`` (acclient.h): a part's position, scale and gfx-object data.
+
+    ``pos`` is the part's position: the body's cell id (``CPartArray::SetCellID``) and the body's
+    frame combined with the part's animation or placement frame (``CPartArray::UpdateParts``).
+    ``gfxobj_scale`` is the body's scale (``CPartArray::SetScaleInternal``); the collision code
+    reads it, the cell code does not.
+
+    Retail: CPhysicsPart::makePhysicsPart @ 0x0050E760 (acclient.c:315550)
+    """
+
+    __slots__ = ("bounding_box", "drawing_sphere", "gfxobj_scale", "physics_sphere", "pos")
+
+    def __init__(self, setup: Setup) -> None:
+        self.pos = Position()
+        self.gfxobj_scale = Vector3(1.0, 1.0, 1.0)
+        self.bounding_box = gfx_bound_box(setup)
+        self.physics_sphere: Sphere | None = (
+            setup.physics_bsp.get_sphere() if setup.physics_bsp is not None else None
+        )
+        sorting = setup.sorting_sphere
+        self.drawing_sphere: Sphere | None = sorting if sorting.radius > 0.0 else None
+
+    def __repr__(self) -> str:
+        return f"PhysicsPart({self.pos!r}, box={self.bounding_box!r})"
+
+    def get_bounding_box(self) -> BBox:
+        """The gfx object's box, local to the part and unscaled (not a copy).
+
+        Retail: CPhysicsPart::GetBoundingBox @ 0x0050D600 (acclient.c:314453)
+        """
+        return self.bounding_box
+
+    def always_2d(self) -> bool:
+        """Whether the part is drawn as a sprite; retail asks its degrade info (first degrade's
+        mode other than 1). acphys parts have no degrade info, so never.
+
+        Retail: CPhysicsPart::Always2D @ 0x0050D8A0 (acclient.c:314641)
+        """
+        return False
+
+    def get_sphere(self) -> Sphere | None:
+        """The physics sphere, else the drawing sphere (what the env-cell portal tests read,
+        acclient.c:348194-348195 and 348454-348457)."""
+        return self.physics_sphere if self.physics_sphere is not None else self.drawing_sphere

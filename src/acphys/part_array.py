@@ -212,11 +212,8 @@ class PartArray:
 
     def calc_cross_cells_static(self, cell: ObjCell, cell_array: CellArray) -> None:
         """Add the cells the parts' bounding boxes reach from ``cell`` (its parts overload of
-        ``find_transit_cells``; the ``CObjCell`` base aborts, acclient.c:346666; here an error).
+        ``find_transit_cells``).
 
         Retail: CPartArray::calc_cross_cells_static @ 0x00518160 (acclient.c:325457)
         """
-        find = getattr(cell, "find_transit_cells_for_parts", None)
-        if find is None:
-            raise NotImplementedError(f"{type(cell).__name__} has no find_transit_cells for parts")
-        find(self.parts, cell_array)
+        cell.find_transit_cells_for_parts(self.parts, cell_array)

@@ -16,6 +16,7 @@ import math
 import pytest
 
 from acphys.flags import PhysicsState as PS
+from acphys.geometry.bbox import BBox
 from acphys.geometry.bsp_builder import build_box_tree
 from acphys.geometry.plane import Plane, Sidedness
 from acphys.geometry.sphere import Sphere
@@ -23,9 +24,8 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
-from acphys.physics_part import BBox, PhysicsPart
+from acphys.physics_part import PhysicsPart
 from acphys.setup import Setup
-from acphys.world.env_cell import intersect_box
 from acphys.world.rooms import DoorwaySpec, RoomSpec, build_house, build_rooms
 from acphys.world.static_objects import add_static_object
 from acphys.world.world import World
@@ -95,12 +95,12 @@ def test_set_scale_internal_gives_every_part_the_scale(ground):
 def test_intersect_box_is_crossing_unless_every_corner_is_beyond_epsilon_on_one_side():
     plane = Plane(Vector3(1.0, 0.0, 0.0), -10.0)  # x = 10
     # Plane::intersect_box (acclient.c:467717): all corners > EPSILON → POSITIVE, < -EPSILON → NEGATIVE.
-    assert intersect_box(plane, BBox(Vector3(10.001, 0, 0), Vector3(11, 1, 1))) == Sidedness.POSITIVE
-    assert intersect_box(plane, BBox(Vector3(8, 0, 0), Vector3(9.999, 1, 1))) == Sidedness.NEGATIVE
+    assert plane.intersect_box(BBox(Vector3(10.001, 0, 0), Vector3(11, 1, 1))) == Sidedness.POSITIVE
+    assert plane.intersect_box(BBox(Vector3(8, 0, 0), Vector3(9.999, 1, 1))) == Sidedness.NEGATIVE
     # The min corner within EPSILON (0.0002) of the plane is CROSSING at once (acclient.c:467742-467746).
-    assert intersect_box(plane, BBox(Vector3(10.0001, 0, 0), Vector3(11, 1, 1))) == Sidedness.CROSSING
+    assert plane.intersect_box(BBox(Vector3(10.0001, 0, 0), Vector3(11, 1, 1))) == Sidedness.CROSSING
     # ... and so is a later corner within EPSILON (which_side says IN_PLANE, not the min's side).
-    assert intersect_box(plane, BBox(Vector3(9, 0, 0), Vector3(9.9999, 1, 1))) == Sidedness.CROSSING
+    assert plane.intersect_box(BBox(Vector3(9, 0, 0), Vector3(9.9999, 1, 1))) == Sidedness.CROSSING
 
 
 def test_local_to_global_is_the_box_around_the_moved_corners_in_the_target_landblock():

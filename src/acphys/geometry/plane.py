@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 from enum import IntEnum
+from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON
 from acphys.math.vector import Vector3
+
+if TYPE_CHECKING:
+    from acphys.geometry.bbox import BBox
 
 
 class Sidedness(IntEnum):
@@ -114,6 +118,17 @@ class Plane:
         if dist <= epsilon:
             return Sidedness.IN_PLANE if dist >= -epsilon else Sidedness.NEGATIVE
         return Sidedness.POSITIVE
+
+    def intersect_box(self, box: BBox) -> Sidedness:
+        """POSITIVE or NEGATIVE when all eight corners of ``box`` are more than EPSILON on that side,
+        else CROSSING (a corner within EPSILON counts as crossing; never IN_PLANE).
+
+        Retail: Plane::intersect_box @ 0x005AA170 (acclient.c:467717)
+        """
+        sides = {self.which_side2(c, 0.0, EPSILON) for c in box.corners()}
+        if len(sides) == 1 and Sidedness.IN_PLANE not in sides:
+            return sides.pop()
+        return Sidedness.CROSSING
 
     def __repr__(self) -> str:
         return f"Plane(N={self.N!r}, d={self.d!r})"

@@ -37,13 +37,13 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON
 from acphys.flags import ObjectInfoState, TransitionState
+from acphys.geometry.bbox import BBox
 from acphys.geometry.bsp import CELL_OUTSIDE
-from acphys.geometry.plane import Plane, Sidedness
+from acphys.geometry.plane import Sidedness
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
-from acphys.physics_part import BBox
 from acphys.transition.transition import InsertType
 from acphys.world.obj_cell import CellArray, CellSource, CellTransition, ObjCell
 
@@ -205,18 +205,6 @@ def _portal_dist(portal: Polygon, local: Vector3) -> float:
     return local.y * n.y + local.z * n.z + local.x * n.x + portal.plane.d
 
 
-def intersect_box(plane: Plane, box: BBox) -> Sidedness:
-    """POSITIVE or NEGATIVE when all eight corners of ``box`` are more than EPSILON on that side
-    of ``plane``, else CROSSING (a corner within EPSILON counts as crossing; never IN_PLANE).
-
-    Retail: Plane::intersect_box @ 0x005AA170 (acclient.c:467717)
-    """
-    sides = {plane.which_side2(c, 0.0, EPSILON) for c in box.corners()}
-    if len(sides) == 1 and Sidedness.IN_PLANE not in sides:
-        return sides.pop()
-    return Sidedness.CROSSING
-
-
 def _part_portal_dist(cell_pos: Position, part: PhysicsPart, sphere: Sphere, portal: Polygon) -> float:
     """The signed distance from ``portal``'s plane to the part's sphere centre, in the cell's frame."""
     return _portal_dist(portal, cell_pos.localtolocal(part.pos, sphere.center))
@@ -373,7 +361,7 @@ class EnvCell(ObjCell):
                 if (side == 0 and dist > reach) or (side == 1 and dist < -reach):
                     continue
                 bbox = part.get_bounding_box()
-                if intersect_box(plane, BBox.local_to_local(bbox, part.pos, self.pos)) == side:
+                if plane.intersect_box(BBox.local_to_local(bbox, part.pos, self.pos)) == side:
                     continue
                 if portal.other_cell_id == OUTSIDE_CELL_ID:
                     check_outside = True
@@ -420,7 +408,7 @@ class EnvCell(ObjCell):
             if (side == 1 and dist > reach) or (side == 0 and dist < -reach):
                 continue
             box = BBox.local_to_local(part.get_bounding_box(), part.pos, self.pos)
-            where = intersect_box(plane, box)
+            where = plane.intersect_box(box)
             if where not in (Sidedness.CROSSING, side):
                 continue
             if self.structure.box_intersects_cell(box.min, box.max):

@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Protocol
 
 from acphys.constants import CELL_LENGTH, EPSILON, FLOOR_Z, MAX_LCOORD
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.geometry.bbox import BBox
 from acphys.geometry.plane import Plane, Sidedness
 from acphys.geometry.polygon import Polygon
 from acphys.geometry.sphere import Sphere
@@ -53,7 +54,6 @@ from acphys.math.cell_id import (
 )
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
-from acphys.physics_part import BBox
 from acphys.world.obj_cell import CellArray, CellTransition, ObjCell
 from acphys.world.terrain import TERRAIN_SURF_CHAR, SurfChar, WaterType
 

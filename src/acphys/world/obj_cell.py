@@ -51,6 +51,7 @@ from acphys.world.terrain import ENTIRELY_WATER_DEPTH, SOLID_VERTEX_WATER_DEPTH,
 if TYPE_CHECKING:
     from acphys.geometry.cylsphere import CylSphere
     from acphys.physics_obj import PhysicsObj
+    from acphys.physics_part import PhysicsPart
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
@@ -315,6 +316,13 @@ class ObjCell:
         Retail: CObjCell::find_transit_cells @ 0x0052B070 (acclient.c:346660)
         """
         raise NotImplementedError(f"{type(self).__name__} has no find_transit_cells")
+
+    def find_transit_cells_for_parts(self, parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:
+        """Add the cells the parts' bounding boxes reach from this one; retail's base aborts.
+
+        Retail: CObjCell::find_transit_cells @ 0x0052B080 (acclient.c:346666)
+        """
+        raise NotImplementedError(f"{type(self).__name__} has no find_transit_cells for parts")
 
     # --- water ----------------------------------------------------------------------------
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
@@ -71,3 +73,21 @@ def test_the_same_table_keeps_its_manager_and_a_new_one_replaces_it() -> None:
     assert body.part_array.motion_table_manager.physics_obj is body
     body.set_motion_table(None)
     assert body.part_array.motion_table_manager is None and body.movement_manager is None
+
+
+def test_the_sorting_sphere_is_the_sphere_around_the_setup_spheres() -> None:
+    from acphys.setup import bounding_sphere, human_setup
+
+    # Human: bottom -0.005, top 1.83 -> centre 0.9125, radius 0.9175 (acphys's stand-in for DAT data).
+    sorting = human_setup().sorting_sphere
+    assert sorting.center.z == pytest.approx(0.9125) and sorting.radius == pytest.approx(0.9175)
+    one = Sphere(Vector3(1.0, 2.0, 3.0), 0.5)
+    assert bounding_sphere([one]).radius == 0.5 and bounding_sphere([one]).center == one.center
+    assert bounding_sphere([]).radius == 0.0
+    inner = Sphere(Vector3(0.0, 0.0, 0.1), 0.2)
+    assert bounding_sphere([Sphere(Vector3(), 1.0), inner]).radius == 1.0
+    # A middle sphere sticking out grows the radius around the end spheres' centre.
+    middle = Sphere(Vector3(3.0, 0.0, 0.0), 1.0)
+    wide = bounding_sphere([Sphere(Vector3(0, 0, 0), 1.0), middle, Sphere(Vector3(0, 0, 2), 1.0)])
+    assert wide.center == Vector3(0.0, 0.0, 1.0)
+    assert wide.radius == pytest.approx(10**0.5 + 1.0)

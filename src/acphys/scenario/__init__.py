@@ -22,7 +22,6 @@ from acphys.flags import TransientState
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
-from acphys.math.cell_id import outdoor_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.motion.motion_table import MotionTable
@@ -33,9 +32,17 @@ from acphys.scenario import values as read
 from acphys.scenario.events import read_event, speed_limited
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
 from acphys.scenario.values import Ctx, ScenarioError
-from acphys.setup import BUILTIN_SETUPS, Setup
+from acphys.scenario.world_data import (
+    SetupLookup,
+    cell_at,
+    read_buildings,
+    read_landblocks,
+    read_objects,
+    read_solids,
+)
+from acphys.setup import BUILTIN_SETUPS, Setup, bounding_sphere
 from acphys.simulation import Simulation
-from acphys.world.terrain import MAX_LAND_HEIGHT
+from acphys.world.env_cell import EnvCell
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
@@ -70,6 +77,9 @@ SETUP_KEYS = (
     "step_up_height",
     "step_down_height",
     "motion_table",
+    "boxes",
+    "polygons",
+    "solids",
 )
 #: The motion table each built-in setup comes with (retail's ``default_mtable_id``).
 BUILTIN_SETUP_TABLES = {"human": "humanoid"}
@@ -131,6 +141,8 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str
             radius=length("radius"),
             step_up_height=length("step_up_height"),
             step_down_height=length("step_down_height"),
+            physics_bsp=read_solids(ctx, key, table),
+            sorting_sphere=bounding_sphere(spheres),
             motion_table=motion_table,
         )
     return setups
@@ -141,22 +153,6 @@ def _builtin_setup(name: str) -> Setup:
     if name in BUILTIN_SETUP_TABLES:
         setup.motion_table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
     return setup
-
-
-def _read_landblocks(ctx: Ctx, raw: Any, world: World) -> None:
-    seen: set[int] = set()
-    for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
-        key = f"landblock[{index}]"
-        entry = read.table(ctx, key, item, ("id", "height"))
-        for required in ("id", "height"):
-            if required not in entry:
-                raise ctx.fail(f"{key}.{required}", "missing (a landblock needs id and height)")
-        landblock = read.landblock(ctx, f"{key}.id", entry["id"])
-        if landblock in seen:
-            raise ctx.fail(f"{key}.id", f"landblock 0x{landblock:04X} is listed twice")
-        seen.add(landblock)
-        height = read.ranged(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
-        world.set_flat_ground(landblock, height)
 
 
 BODY_KEYS = (
@@ -184,22 +180,36 @@ def _skill(ctx: Ctx, key: str, value: Any) -> int:
     return value
 
 
+def _setup_lookup(ctx: Ctx, setups: dict[str, Setup]) -> SetupLookup:
+    """Finds a setup by name: the scenario's ``[setup.NAME]`` first, then the built-in ones."""
+
+    def find(key: str, value: Any) -> Setup:
+        name = read.string(ctx, key, value)
+        if name in setups:
+            return setups[name]
+        if name in BUILTIN_SETUPS:
+            return _builtin_setup(name)
+        known = ", ".join([*BUILTIN_SETUPS, *setups])
+        raise ctx.fail(key, f"no setup named {name!r} (known: {known})")
+
+    return find
+
+
 def _read_body(
-    ctx: Ctx, key: str, raw: Any, world: World, setups: dict[str, Setup], tables: dict[str, MotionTable]
+    ctx: Ctx,
+    key: str,
+    raw: Any,
+    world: World,
+    find_setup: SetupLookup,
+    tables: dict[str, MotionTable],
+    rooms: dict[int, list[EnvCell]],
 ) -> PhysicsObj:
     table = read.table(ctx, key, raw, BODY_KEYS)
     for required in ("name", "landblock", "origin"):
         if required not in table:
             raise ctx.fail(f"{key}.{required}", "missing (every body needs name, landblock and origin)")
     name = read.string(ctx, f"{key}.name", table["name"])
-    setup_name = read.string(ctx, f"{key}.setup", table.get("setup", "human"))
-    if setup_name in setups:
-        setup = setups[setup_name]
-    elif setup_name in BUILTIN_SETUPS:
-        setup = _builtin_setup(setup_name)
-    else:
-        known = ", ".join([*BUILTIN_SETUPS, *setups])
-        raise ctx.fail(f"{key}.setup", f"no setup named {setup_name!r} (known: {known})")
+    setup = find_setup(f"{key}.setup", table.get("setup", "human"))
     landblock = read.landblock(ctx, f"{key}.landblock", table["landblock"])
     origin = read.vector(ctx, f"{key}.origin", table["origin"])
     if not (0.0 <= origin.x < BLOCK_LENGTH and 0.0 <= origin.y < BLOCK_LENGTH):
@@ -229,7 +239,7 @@ def _read_body(
         motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables)
 
     frame = Frame.from_heading(origin, heading)
-    body.enter_world(Position(outdoor_cell_id(landblock, origin), frame))
+    body.enter_world(Position(cell_at(rooms, landblock, origin), frame))
     if read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False)):
         body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
         body.contact_plane = Plane.horizontal(origin.z)
@@ -246,7 +256,7 @@ def _read_body(
 
 # -- entry points ---------------------------------------------------------------------------
 
-TOP_KEYS = ("scenario", "landblock", "motion_table", "setup", "body", "event")
+TOP_KEYS = ("scenario", "landblock", "motion_table", "setup", "building", "object", "body", "event")
 
 
 def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "scenario") -> Simulation:
@@ -262,15 +272,20 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
     setups = _read_setups(ctx, document.get("setup", {}), tables)
 
     world = World()
-    _read_landblocks(ctx, document.get("landblock", []), world)
+    read_landblocks(ctx, document.get("landblock", []), world)
+    rooms = read_buildings(ctx, document.get("building", []), world)
+    find_setup = _setup_lookup(ctx, setups)
+    objects = read_objects(ctx, document.get("object", []), world, find_setup, rooms)
     raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
     if not raw_bodies:
         raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
     bodies: list[PhysicsObj] = []
     for index, raw in enumerate(raw_bodies):
-        body = _read_body(ctx, f"body[{index}]", raw, world, setups, tables)
+        body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms)
         if any(other.name == body.name for other in bodies):
             raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
+        if any(other.name == body.name for other in objects):
+            raise ctx.fail(f"body[{index}].name", f"a body and an object are both named {body.name!r}")
         bodies.append(body)
     by_name = {body.name: body for body in bodies}
     if header.player is not None:

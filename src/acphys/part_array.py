@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.flags import TransitionState
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
@@ -15,6 +16,7 @@ from acphys.physics_part import PhysicsPart
 from acphys.setup import Setup
 
 if TYPE_CHECKING:
+    from acphys.geometry.sphere import SphereTransition
     from acphys.motion.motion_table import MotionTable
     from acphys.physics_obj import PhysicsObj
     from acphys.world.obj_cell import CellArray, ObjCell
@@ -209,6 +211,18 @@ class PartArray:
             offset = part_frame.copy()
             offset.origin = offset.origin * self.scale
             part.pos.frame.combine(frame, offset)
+
+    def find_obj_collisions(self, transition: SphereTransition) -> TransitionState:
+        """Each part in turn (``PhysicsPart.find_obj_collisions``) until one answers other than OK;
+        that answer, else OK.
+
+        Retail: CPartArray::FindObjCollisions @ 0x00518180 (acclient.c:325463)
+        """
+        for part in self.parts:
+            result = part.find_obj_collisions(transition)
+            if result != TransitionState.OK:
+                return result
+        return TransitionState.OK
 
     def calc_cross_cells_static(self, cell: ObjCell, cell_array: CellArray) -> None:
         """Add the cells the parts' bounding boxes reach from ``cell`` (its parts overload of

@@ -46,7 +46,14 @@ from acphys.constants import (
     SMALL_VELOCITY,
     float32,
 )
-from acphys.flags import DEFAULT_PHYSICS_STATE, STATIONARY_MASK, PhysicsState, TransientState
+from acphys.flags import (
+    DEFAULT_PHYSICS_STATE,
+    STATIONARY_MASK,
+    ObjectInfoState,
+    PhysicsState,
+    TransientState,
+    TransitionState,
+)
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.hooks import FPHook, HookType
@@ -61,6 +68,7 @@ from acphys.transition.transition import Transition
 from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
 
 if TYPE_CHECKING:
+    from acphys.geometry.sphere import SphereTransition
     from acphys.motion.interp import MotionInterp
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
@@ -990,6 +998,80 @@ class PhysicsObj:
         else:
             self.state &= ~PS.NODRAW
         return True
+
+    # -- collisions: a sweep meets this body --------------------------------------------------
+
+    def find_obj_collisions(self, transition: SphereTransition) -> TransitionState:
+        """Collide the transition's moving spheres with this body (found through a cell's shadow).
+
+        OK at once for an ethereal body that ignores collisions, and for a creature (by its
+        weenie) when the mover is a viewer. An ethereal body, or any non-static one when the mover
+        is ethereal, is an ethereal obstruction: skipped (OK) while stepping down, else tested with
+        ``sphere_path.obstruction_ethereal`` set, so the shapes only report overlap. Two players
+        pass through each other (the exemption) unless the mover is impenetrable, this body is, or
+        both are PK or both PK-lite. Unless exempt or ``OBJECTINFO.missile_ignore``, the body's
+        physics BSP is tried through its parts (``HAS_PHYSICS_BSP``), else its cylspheres, else its
+        spheres, each placed at ``position`` and ``scale``, until one answers other than OK.
+
+        Such an answer, outside a step-down, is recorded: a static body flags
+        ``collided_with_environment`` (unless the mover is in contact) and is not added to the
+        collision objects; an ethereal obstruction, or a creature (a missile body or a creature
+        weenie) met by a mover that ignores creatures, becomes OK with the collision normal
+        invalidated and is added as OK; any other body is added with the answer.
+        ``obstruction_ethereal`` is cleared on the way out.
+
+        Retail: CPhysicsObj::FindObjCollisions @ 0x0050F050 (acclient.c:316158)
+        """
+        state = self.state
+        if state & PS.ETHEREAL and state & PS.IGNORE_COLLISIONS:
+            return TransitionState.OK
+        path = transition.sphere_path
+        info = transition.object_info
+        weenie = self.weenie_obj
+        if weenie is not None and info.state & ObjectInfoState.IS_VIEWER and weenie.is_creature():
+            return TransitionState.OK
+        ethereal = bool(state & PS.ETHEREAL or (info.ethereal and not state & PS.STATIC))
+        if ethereal and path.step_down:
+            return TransitionState.OK
+        path.obstruction_ethereal = ethereal
+        exempt = (
+            weenie is not None
+            and weenie.is_player()
+            and bool(info.state & ObjectInfoState.IS_PLAYER)
+            and not info.state & ObjectInfoState.IS_IMPENETRABLE
+            and not weenie.is_impenetrable()
+            and not (info.state & ObjectInfoState.IS_PK and weenie.is_pk())
+            and not (info.state & ObjectInfoState.IS_PKLITE and weenie.is_pk_lite())
+        )
+        is_creature = bool(state & PS.MISSILE) or (weenie is not None and weenie.is_creature())
+        parts = self.part_array
+        result = TransitionState.OK
+        if state & PS.HAS_PHYSICS_BSP and not exempt and not info.missile_ignore(self):
+            if parts is not None:
+                result = parts.find_obj_collisions(transition)
+        elif parts is not None and parts.get_num_cylsphere() and not exempt and not info.missile_ignore(self):
+            for cylsphere in parts.get_cylsphere():
+                result = cylsphere.intersects_sphere_placed(self.position, self.scale, transition)
+                if result != TransitionState.OK:
+                    break
+        elif parts is not None and parts.get_num_sphere() and not exempt and not info.missile_ignore(self):
+            for sphere in parts.get_sphere():
+                result = sphere.intersects_sphere_placed(self.position, self.scale, transition, is_creature)
+                if result != TransitionState.OK:
+                    break
+        if result != TransitionState.OK and not path.step_down:
+            collisions = transition.collision_info
+            if state & PS.STATIC:
+                if not info.state & ObjectInfoState.CONTACT:
+                    collisions.collided_with_environment = True
+            elif ethereal or (is_creature and info.state & ObjectInfoState.IGNORE_CREATURES):
+                result = TransitionState.OK
+                collisions.collision_normal_valid = False
+                collisions.add_object(self, TransitionState.OK)
+            else:
+                collisions.add_object(self, result)
+        path.obstruction_ethereal = False
+        return result
 
     # -- shadows: the cells a body overlaps ---------------------------------------------------
 

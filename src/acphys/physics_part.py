@@ -7,27 +7,37 @@ its setup (acphys setups have exactly one part, at the setup origin):
   ``physics_bsp`` polygons (retail: around the gfx object's whole vertex array); a setup without
   one gets the box around its spheres (centre ± radius) and cylspheres (``low_pt`` ± radius
   across, ``low_pt.z`` to ``low_pt.z + height`` up); a setup with neither, the zero box;
-- ``physics_sphere`` is the physics BSP's root sphere, as retail sets it (``CGfxObj::Serialize``,
-  acclient.c:356682); ``drawing_sphere``,
+- ``physics_bsp`` is the setup's physics BSP; ``physics_sphere`` is its root sphere, as retail
+  sets it (``CGfxObj::Serialize``, acclient.c:356682); ``drawing_sphere``,
   which retail takes from the drawing BSP, is here the setup's sorting sphere (None when it has
   no radius).
 
 The box is in the part's local frame and is *not* scaled: ``GetBoundingBox`` returns the gfx
 object's box as is and ``BBox::LocalToGlobal`` / ``LocalToLocal`` move it by the part's frame
 only, so a scaled object shadows into cells by its unscaled box.
+
+Collisions (``find_obj_collisions``) take the moving spheres into the part's frame at its
+``gfxobj_scale.z`` and test them against the physics BSP once one overlaps ``physics_sphere``.
+
+Divergence from ACE's ``GfxObj.FindObjCollisions`` (the decompilation wins): ACE goes on to the
+BSP when ``|d|² - (r1 + r2)² < EPSILON``; the decompiled compare is lost (acclient.c:356539-356544)
+but has the shape of ``CSphere::intersects`` (same deltas, same ``c0 | c2`` test), read here as
+``|d|² < (r1 + r2)²``: a sphere touching ``physics_sphere`` does not reach the BSP.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.flags import TransitionState
 from acphys.geometry.bbox import BBox
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.transition.transition import InsertType
 
 if TYPE_CHECKING:
-    from acphys.geometry.bsp import BSPNode
-    from acphys.geometry.sphere import Sphere
+    from acphys.geometry.bsp import BSPNode, BSPTree
+    from acphys.geometry.sphere import Sphere, SphereTransition
     from acphys.setup import Setup
 
 
@@ -70,12 +80,13 @@ class PhysicsPart:
     Retail: CPhysicsPart::makePhysicsPart @ 0x0050E760 (acclient.c:315550)
     """
 
-    __slots__ = ("bounding_box", "drawing_sphere", "gfxobj_scale", "physics_sphere", "pos")
+    __slots__ = ("bounding_box", "drawing_sphere", "gfxobj_scale", "physics_bsp", "physics_sphere", "pos")
 
     def __init__(self, setup: Setup) -> None:
         self.pos = Position()
         self.gfxobj_scale = Vector3(1.0, 1.0, 1.0)
         self.bounding_box = gfx_bound_box(setup)
+        self.physics_bsp: BSPTree | None = setup.physics_bsp
         self.physics_sphere: Sphere | None = (
             setup.physics_bsp.get_sphere() if setup.physics_bsp is not None else None
         )
@@ -104,3 +115,35 @@ class PhysicsPart:
         """The physics sphere, else the drawing sphere (what the env-cell portal tests read,
         acclient.c:348194-348195 and 348454-348457)."""
         return self.physics_sphere if self.physics_sphere is not None else self.drawing_sphere
+
+    def find_obj_collisions(self, transition: SphereTransition) -> TransitionState:
+        """Collide the moving spheres with the part's physics BSP: OK without one; otherwise the
+        spheres are cached in the part's frame (``pos``) at ``gfxobj_scale.z`` and
+        :func:`gfx_find_obj_collisions` runs at that scale.
+
+        Retail: CPhysicsPart::find_obj_collisions @ 0x0050D8D0 (acclient.c:314655)
+        """
+        if self.physics_bsp is None:
+            return TransitionState.OK
+        scale = self.gfxobj_scale.z
+        transition.sphere_path.cache_localspace_sphere(self.pos, scale)
+        return gfx_find_obj_collisions(self, transition, scale)
+
+
+def gfx_find_obj_collisions(part: PhysicsPart, transition: SphereTransition, scale: float) -> TransitionState:
+    """The gfx object's half of a part collision (``part`` holds the gfx data): OK unless one of
+    the ``localspace_sphere`` overlaps ``physics_sphere`` (strictly, see the module docstring); then
+    an initial placement asks the BSP's ``placement_insert``, anything else its
+    ``find_collisions`` at ``scale``.
+
+    Retail: CGfxObj::find_obj_collisions @ 0x00534700 (acclient.c:356514)
+    """
+    bsp, bound = part.physics_bsp, part.physics_sphere
+    if bsp is None or bound is None:
+        raise ValueError(f"{part!r} has no physics BSP to collide with")
+    path = transition.sphere_path
+    if not any(bound.intersects(sphere) for sphere in path.localspace_sphere):
+        return TransitionState.OK
+    if path.insert_type == InsertType.INITIAL_PLACEMENT:
+        return bsp.placement_insert(transition)
+    return bsp.find_collisions(transition, scale)

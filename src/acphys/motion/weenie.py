@@ -13,6 +13,14 @@ effective Run / Jump skill and the burden into rates through
 effective skills (base, ranks, buffs and augmentations already added), the
 load (burden over capacity), whether stamina is above zero and whether a PK
 attack happened in the last 20 seconds.
+
+The collision code (``CPhysicsObj::FindObjCollisions``, ``OBJECTINFO::init``) asks four more
+virtuals, each one bit of the object's public description (``pwd._bitfield``):
+``IsPlayer`` (slot 4, bit 0x8), ``IsPK`` (slot 8, bit 0x20), ``IsPKLite`` (slot 9, bit
+0x2000000) and ``IsImpenetrable`` (slot 10, bit 0x200000). The slots are pinned by
+``OBJECTINFO::init`` (acclient.c:314132-314143), which turns them into the ``OBJECTINFO`` bits
+named for them (IS_IMPENETRABLE 0x80, IS_PLAYER 0x100, IS_PK 0x800, IS_PKLITE 0x1000).
+``IsCreature`` is slot 11 and ``IsThePlayer`` slot 5.
 """
 
 from __future__ import annotations
@@ -112,9 +120,24 @@ class Weenie:
     so only it answers the run-rate, jump and stamina questions. Another
     creature (``the_player=False``) answers none of them; the interpreter
     then uses ``my_run_rate``, a jump velocity of 0 and refuses to charge a jump.
+
+    ``player``, ``pk``, ``pk_lite`` and ``impenetrable`` are the description bits the collision code
+    reads; they default to clear, as in an empty ``PublicWeenieDesc``.
     """
 
-    __slots__ = ("creature", "jump_skill", "load", "recent_pk", "run_skill", "stamina", "the_player")
+    __slots__ = (
+        "creature",
+        "impenetrable",
+        "jump_skill",
+        "load",
+        "pk",
+        "pk_lite",
+        "player",
+        "recent_pk",
+        "run_skill",
+        "stamina",
+        "the_player",
+    )
 
     def __init__(
         self,
@@ -126,6 +149,10 @@ class Weenie:
         load: float = 0.0,
         stamina: int = 1,
         recent_pk: bool = False,
+        player: bool = False,
+        pk: bool = False,
+        pk_lite: bool = False,
+        impenetrable: bool = False,
     ) -> None:
         for name, skill in (("run_skill", run_skill), ("jump_skill", jump_skill)):
             if not isinstance(skill, int) or skill < 0:
@@ -142,6 +169,10 @@ class Weenie:
         self.stamina = stamina
         #: A PK or PK-lite whose last PK attack was under 20 s ago (prices jumps by power).
         self.recent_pk = recent_pk
+        self.player = player
+        self.pk = pk
+        self.pk_lite = pk_lite
+        self.impenetrable = impenetrable
 
     def is_the_player(self) -> bool:
         """Retail: ACCWeenieObject::IsThePlayer @ 0x0058C3D0 (acclient.c:436872)"""
@@ -150,6 +181,25 @@ class Weenie:
     def is_creature(self) -> bool:
         """Retail: ACCWeenieObject::IsCreature @ 0x0058C3F0 (acclient.c:436878)"""
         return self.creature
+
+    def is_player(self) -> bool:
+        """Any player character (not only the client's own: that is ``is_the_player``).
+
+        Retail: ACCWeenieObject::IsPlayer @ 0x0058C890 (acclient.c:437198)
+        """
+        return self.player
+
+    def is_pk(self) -> bool:
+        """Retail: ACCWeenieObject::IsPK @ 0x0058C8B0 (acclient.c:437210)"""
+        return self.pk
+
+    def is_pk_lite(self) -> bool:
+        """Retail: ACCWeenieObject::IsPKLite @ 0x0058C8A0 (acclient.c:437204)"""
+        return self.pk_lite
+
+    def is_impenetrable(self) -> bool:
+        """Retail: ACCWeenieObject::IsImpenetrable @ 0x0058C8C0 (acclient.c:437216)"""
+        return self.impenetrable
 
     def inq_run_rate(self) -> float | None:
         """The run rate from the Run skill and load (skill 0 when out of stamina); None if not the player.

@@ -7,8 +7,10 @@ cell behind a door and that cell's portal to the outside (``other_portal_id``). 
 through a door reaches the env cell by ``find_building_transit_cells``.
 
 Retail's ``CBuildingObj`` derives from ``CPhysicsObj``; a building only uses its position, its
-one part and its cell, so here it is a small class of its own holding the shell's physics BSP
-(building-local, with the part's scale). Not ported: the leaf cells and shadow parts (drawing).
+one part and its cell, so here it is a small class of its own holding that part (a
+:class:`acphys.physics_part.PhysicsPart` with the shell's physics BSP, building-local, at the
+building's scale), whose position is the building's own. Not ported: the leaf cells and shadow
+parts (drawing).
 
 Divergences from ACE (the decompilation wins):
 
@@ -17,9 +19,8 @@ Divergences from ACE (the decompilation wins):
 - ACE's ``BldPortal.add_to_stablist`` appends an id when it *is* already in the list (and
   rebuilds the list from its own stabs when full); retail appends the ids not yet there
   (acclient.c:362436-362470).
-- ACE's ``GfxObj.FindObjCollisions`` tests ``|d|² - (r1 + r2)² < EPSILON`` before the BSP; the
-  decompiled compare is lost (acclient.c:356532-356538) but has the shape of
-  ``CSphere::intersects`` (same deltas, same ``c0 | c2`` test), read here as ``|d|² < (r1 + r2)²``.
+- ACE's ``GfxObj.FindObjCollisions`` tests ``|d|² - (r1 + r2)² < EPSILON`` before the BSP (see
+  :mod:`acphys.physics_part`, which holds the shared part collision).
 """
 
 from __future__ import annotations
@@ -31,7 +32,9 @@ from acphys.flags import ObjectInfoState, TransitionState
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
-from acphys.transition.transition import InsertType
+from acphys.math.vector import Vector3
+from acphys.physics_part import PhysicsPart
+from acphys.setup import Setup
 from acphys.world.env_cell import PORTAL_EXACT_MATCH, PORTAL_NEGATIVE_SIDE, EnvCell
 from acphys.world.obj_cell import CellArray, CellSource, CellTransition, ObjCell
 
@@ -39,7 +42,6 @@ if TYPE_CHECKING:
     from acphys.geometry.bsp import BSPTree
     from acphys.geometry.sphere import Sphere
     from acphys.physics_obj import PhysicsObj
-    from acphys.physics_part import PhysicsPart
     from acphys.transition.transition import SpherePath
     from acphys.world.land_cell import SortCell
 
@@ -117,14 +119,15 @@ class BldPortal:
 class BuildingObj:
     """Retail ``CBuildingObj`` (acclient.h:31909): a shell (one part's physics BSP) and doors.
 
-    ``pos`` is the building's position (outdoor cell id, landblock-local frame); the shell BSP is
-    in the building's frame at ``scale``. ``source`` is where ``get_object`` looks cells up
+    ``pos`` is the building's position (outdoor cell id, landblock-local frame) and its part's
+    (the part sits at the building's origin); the shell BSP is in the building's frame at
+    ``scale``. ``source`` is where ``get_object`` looks cells up
     (retail's global ``CEnvCell::GetVisible``): the world the building stands in.
 
     Retail: CBuildingObj::makeBuilding @ 0x006B53A0 (acclient.c:719152)
     """
 
-    __slots__ = ("building_id", "cell", "physics_bsp", "portals", "pos", "scale", "source")
+    __slots__ = ("building_id", "cell", "part", "portals", "pos", "source")
 
     def __init__(
         self,
@@ -138,15 +141,26 @@ class BuildingObj:
         if not scale > 0.0:
             raise ValueError(f"building scale must be positive, got {scale!r}")
         self.building_id = building_id
-        self.physics_bsp = physics_bsp
         self.pos = Position(0, frame)
+        self.part = PhysicsPart(Setup("building", physics_bsp=physics_bsp))
+        self.part.pos = self.pos
+        self.part.gfxobj_scale = Vector3(scale, scale, scale)
         self.portals = list(portals)
-        self.scale = float(scale)
         self.cell: SortCell | None = None
         self.source = source
 
     def __repr__(self) -> str:
         return f"BuildingObj({self.building_id:#x} in {format_cell_id(self.pos.objcell_id)})"
+
+    @property
+    def physics_bsp(self) -> BSPTree | None:
+        """The shell's physics BSP (the part's)."""
+        return self.part.physics_bsp
+
+    @property
+    def scale(self) -> float:
+        """The building's scale (the part's ``gfxobj_scale``)."""
+        return self.part.gfxobj_scale.z
 
     @property
     def num_portals(self) -> int:
@@ -178,38 +192,19 @@ class BuildingObj:
             portal.add_to_stablist(block_stab_list)
 
     def find_building_collisions(self, transition: CellTransition) -> TransitionState:
-        """The shell, with ``sphere_path.bldg_check`` set for the duration; a result other than
-        OK flags an environment collision unless the body is in contact.
+        """The shell part (``PhysicsPart.find_obj_collisions``), with ``sphere_path.bldg_check``
+        set for the duration; a result other than OK flags an environment collision unless the
+        body is in contact.
 
         Retail: CBuildingObj::find_building_collisions @ 0x006B5300 (acclient.c:719115)
         """
         path = transition.sphere_path
         path.bldg_check = True
-        result = self._part_find_obj_collisions(transition)
+        result = self.part.find_obj_collisions(transition)
         path.bldg_check = False
         if result != TransitionState.OK and not transition.object_info.state & ObjectInfoState.CONTACT:
             transition.collision_info.collided_with_environment = True
         return result
-
-    def _part_find_obj_collisions(self, transition: CellTransition) -> TransitionState:
-        """The shell part: spheres into the part's frame at its scale; if one overlaps the BSP's
-        bounding sphere, initial placement runs ``placement_insert``, anything else
-        ``find_collisions``.
-
-        Retail: CPhysicsPart::find_obj_collisions @ 0x0050D8D0 (acclient.c:314655), with
-        CGfxObj::find_obj_collisions @ 0x00534700 (acclient.c:356514)
-        """
-        bsp = self.physics_bsp
-        if bsp is None:
-            return TransitionState.OK
-        path = transition.sphere_path
-        path.cache_localspace_sphere(self.pos, self.scale)
-        bound = bsp.get_sphere()
-        if not any(bound.intersects(sphere) for sphere in path.localspace_sphere):
-            return TransitionState.OK
-        if path.insert_type == InsertType.INITIAL_PLACEMENT:
-            return bsp.placement_insert(transition)
-        return bsp.find_collisions(transition, self.scale)
 
     def find_building_transit_cells(
         self, p: Position, spheres: Sequence[Sphere], cell_array: CellArray, path: SpherePath | None

@@ -692,6 +692,34 @@ class PhysicsObj:
         self.position.objcell_id = stored.objcell_id
         self.set_frame(stored.frame)
 
+    def leave_world(self) -> None:
+        """Take the body out of the world: out of the lost cell, its shadows and its cell, off the
+        ground (telling the movement manager), inactive, with no contact, sliding or stationary state.
+
+        Retail first reports the end of every object collision (``report_collision_end``), which
+        arrives with the collision sweep.
+
+        Retail: CPhysicsObj::leave_world @ 0x005155A0 (acclient.c:322653)
+        """
+        self.world.remove_from_lost_cell(self)
+        self.transient_state &= ~TS.ACTIVE
+        self.remove_shadows_from_cells()
+        self.leave_cell()
+        self.position.objcell_id = 0
+        if self.part_array is not None and not self.state & PS.PARTICLE_EMITTER:
+            self.part_array.set_cell_id(0)
+        self.transient_state &= ~TS.CONTACT
+        self.calc_acceleration()
+        was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+        self.transient_state &= ~(TS.ON_WALKABLE | TS.WATER_CONTACT)
+        if was_on_walkable and self.movement_manager is not None:
+            self.movement_manager.leave_ground()
+        self.calc_acceleration()
+        self.transient_state &= ~(
+            TS.SLIDING | TS.STATIONARY_FALL | TS.STATIONARY_STOP | TS.STATIONARY_STUCK | TS.ACTIVE
+            | TS.CHECK_ETHEREAL
+        )
+
     def prepare_to_leave_visibility(self) -> None:
         """Take the body out of every cell (its shadows, the lost cell, its own cell).
 

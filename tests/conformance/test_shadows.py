@@ -95,3 +95,29 @@ def test_a_commit_into_no_cell_parks_the_body_in_the_lost_cell(world):
     # Leaving visibility again takes it out of the lost cell.
     body.prepare_to_leave_visibility()
     assert world.lost_cell == []
+
+
+def test_leaving_the_world_clears_cells_shadows_and_ground_state(world):
+    # CPhysicsObj::leave_world (acclient.c:322653): lost cell, shadows, cell, cell id 0, contact and
+    # walkable off (LeaveGround to the movement manager), then mask 0xFFFFFE0B keeps only bits 0x1|0x2|0x8.
+    from acphys.flags import TransientState as TS
+    from acphys.scenario.motion_tables import builtin_motion_table
+
+    world.set_flat_ground(LANDBLOCK, 50.0)
+    body = place(
+        world,
+        state=PS.GRAVITY,
+        origin=(47.7, 36.0, 50.0),
+        on_ground=True,
+        motion_table=builtin_motion_table("humanoid"),
+    )
+    body.calc_cross_cells()
+    body.transient_state |= TS.SLIDING | TS.STATIONARY_FALL
+    cell = body.cell
+    world.remove_object(body)
+    assert body.cell is None and body not in cell.objects and _cells_holding(world, body) == set()
+    assert body.position.objcell_id == 0
+    assert body.transient_state == TS(0)
+    # Off the ground with gravity: calc_acceleration now falls (acclient.c:317814).
+    assert body.acceleration.z < 0.0
+    assert world.get_object(body.id) is None

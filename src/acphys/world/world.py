@@ -82,6 +82,13 @@ class World:
         self._objects[object_id] = obj
         return object_id
 
+    def remove_object(self, obj: PhysicsObj) -> None:
+        """Take ``obj`` out of the world (``leave_world``) and out of the object table."""
+        if self._objects.get(obj.id) is not obj:
+            raise ValueError(f"{obj.name!r} (0x{obj.id:08X}) is not an object of this world")
+        obj.leave_world()
+        del self._objects[obj.id]
+
     def get_object(self, object_id: int) -> PhysicsObj | None:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""
         return self._objects.get(object_id)

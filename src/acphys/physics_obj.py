@@ -14,8 +14,11 @@ The tick, top to bottom, as :meth:`PhysicsObj.update_object` runs it:
 
 from __future__ import annotations
 
+import enum
 import math
+import random
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from acphys.attachments import (
@@ -73,6 +76,7 @@ if TYPE_CHECKING:
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
     from acphys.motion.weenie import Weenie
+    from acphys.world.env_cell import EnvCell
     from acphys.world.world import World
 
 PS = PhysicsState
@@ -80,6 +84,117 @@ TS = TransientState
 
 #: Called after every ``update_object_internal`` with the body and the quantum integrated.
 StepObserver = Callable[["PhysicsObj", float], None]
+
+
+class CollisionKind(enum.Enum):
+    """Which weenie callback retail makes for a collision report (``CWeenieObject`` vtable slot)."""
+
+    #: ``DoCollision(EnvCollisionProfile)`` (slot 19): the environment, or an object reporting as it.
+    ENVIRONMENT = "environment"
+    #: ``DoCollision(ObjCollisionProfile)`` (slot 20): another object.
+    OBJECT = "object"
+    #: ``DoCollision(AtkCollisionProfile)`` (slot 21): a missile learns where it hit an object.
+    ATTACK = "attack"
+    #: ``DoCollisionEnd(object_id)`` (slot 22): the collision record with that object expired.
+    END = "end"
+
+
+@dataclass(frozen=True, slots=True)
+class CollisionReport:
+    """One collision report as retail's collision profiles carry it.
+
+    ``velocity`` is the receiver's own velocity for ENVIRONMENT and the reporting body's
+    velocity minus the other's for OBJECT (the same vector for both sides of a pair, as retail
+    passes it); None for ATTACK and END. ``me_in_contact`` / ``other_is_missile`` /
+    ``other_in_contact`` are the profiles' bits (0x20 / 0x8 / 0x10 of ``ObjCollisionProfile``,
+    0x1 of ``EnvCollisionProfile``). ``part`` and ``location`` are the ``AtkCollisionProfile``'s
+    (``part`` is always -1 here; ``location`` is ``Position::determine_quadrant``'s bits).
+    ``other`` is None for the environment and for an END whose object no longer exists.
+    """
+
+    kind: CollisionKind
+    other_id: int = 0
+    other: PhysicsObj | None = None
+    velocity: Vector3 | None = None
+    me_in_contact: bool = False
+    other_is_missile: bool = False
+    other_in_contact: bool = False
+    part: int = -1
+    location: int = 0
+
+    @property
+    def is_environment(self) -> bool:
+        return self.kind is CollisionKind.ENVIRONMENT
+
+    @property
+    def is_end(self) -> bool:
+        return self.kind is CollisionKind.END
+
+    @property
+    def is_start(self) -> bool:
+        return self.kind is not CollisionKind.END
+
+
+#: ``PhysicsObj.on_collision``: called with the receiving body and each report it receives.
+CollisionCallback = Callable[["PhysicsObj", CollisionReport], None]
+
+
+@dataclass(slots=True)
+class CollisionRecord:
+    """Retail ``CPhysicsObj::CollisionRecord`` (acclient.h:52277): when an object was last touched."""
+
+    touched_time: float
+    ethereal: bool
+
+
+class CollisionTable:
+    """Retail ``collision_table``: a ``LongNIValHash<CollisionRecord>`` of 4 buckets keyed by object id.
+
+    Iteration follows the hash: bucket ``(id ^ (id >> 8)) & 3`` in order 0..3
+    (``HashBase::InternalInit``: mask 3, key shift 8), and within a bucket the
+    newest key first (``HashBase::clobber`` pushes a new key at the chain head and
+    replaces a known one in place).
+    """
+
+    __slots__ = ("_records",)
+
+    TABLE_MASK = 3
+    KEY_SHIFT = 8
+
+    def __init__(self) -> None:
+        #: Insertion order is first-insertion order: a clobbered key keeps its place.
+        self._records: dict[int, CollisionRecord] = {}
+
+    def __len__(self) -> int:
+        return len(self._records)
+
+    def __contains__(self, object_id: object) -> bool:
+        return object_id in self._records
+
+    def get(self, object_id: int) -> CollisionRecord | None:
+        return self._records.get(object_id)
+
+    def clobber(self, object_id: int, record: CollisionRecord) -> bool:
+        """Store ``record`` under ``object_id``; True when a record was already there (and is replaced).
+
+        Retail: LongNIValHash<CPhysicsObj::CollisionRecord>::clobber @ 0x00513830 (acclient.c:320726)
+        """
+        known = object_id in self._records
+        self._records[object_id] = record
+        return known
+
+    def remove(self, object_id: int) -> None:
+        del self._records[object_id]
+
+    def ids(self) -> list[int]:
+        """The keys in retail iteration order (``HashBaseIter::Next``)."""
+        newest_first = list(reversed(self._records))
+        return [
+            key
+            for bucket in range(self.TABLE_MASK + 1)
+            for key in newest_first
+            if (key ^ (key >> self.KEY_SHIFT)) & self.TABLE_MASK == bucket
+        ]
 
 
 class PhysicsObj:
@@ -156,6 +271,10 @@ class PhysicsObj:
         self.step_events: list[str] = []
         #: Called after every physics step; the simulation's tracer hangs here.
         self.observer: StepObserver | None = None
+        #: ``collision_table``: the objects touched lately; made by the first object collision.
+        self.collision_table: CollisionTable | None = None
+        #: Receives this body's collision reports (retail's weenie ``DoCollision*`` callbacks).
+        self.on_collision: CollisionCallback | None = None
 
     def __repr__(self) -> str:
         return f"PhysicsObj({self.name!r}, {self.position!r})"
@@ -504,29 +623,84 @@ class PhysicsObj:
         if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
             self.part_array.set_frame(self.position.frame)
 
-    def transition(self, old_pos: Position, new_pos: Position) -> Transition | None:
+    def transition(self, old_pos: Position, new_pos: Position, admin_move: bool = False) -> Transition | None:
         """Sweep the body's spheres from ``old_pos`` to ``new_pos``; None when no valid position exists.
 
-        Seeds ``frames_stationary_fall`` from the STATIONARY bits
-        (STUCK → 3, STOP → 2, FALL → 1). (Retail's ``admin_move`` argument
-        feeds the object info that arrives with the collision sweep.)
+        A transition from the pool gets the body's object info (``get_object_info``, which
+        also hands over the contact plane and sliding normal unless ``admin_move``), its first
+        two spheres scaled (the dummy sphere without any), the path from the body's cell, and
+        ``frames_stationary_fall`` seeded from the STATIONARY bits (STUCK → 3, STOP → 2,
+        FALL → 1).
 
         Retail: CPhysicsObj::transition @ 0x00512DC0 (acclient.c:320060)
         """
-        transit = Transition(self.world, self)
-        if self.part_array is not None and self.part_array.get_num_sphere():
-            transit.init_sphere(self.part_array.get_sphere(), self.scale)
-        else:
-            transit.init_sphere([DUMMY_SPHERE], 1.0)
-        transit.init_path(self.cell, old_pos, new_pos)
-        ts = self.transient_state
-        if ts & TS.STATIONARY_STUCK:
-            transit.collision_info.frames_stationary_fall = 3
-        elif ts & TS.STATIONARY_STOP:
-            transit.collision_info.frames_stationary_fall = 2
-        elif ts & TS.STATIONARY_FALL:
-            transit.collision_info.frames_stationary_fall = 1
-        return transit if transit.find_valid_position() else None
+        transit = Transition.make_transition(self.world)
+        try:
+            transit.init_object(self, self.get_object_info(transit, admin_move))
+            if self.part_array is not None and self.part_array.get_num_sphere():
+                transit.init_sphere(self.part_array.get_sphere(), self.scale)
+            else:
+                transit.init_sphere([DUMMY_SPHERE], 1.0)
+            transit.init_path(self.cell, old_pos, new_pos)
+            ts = self.transient_state
+            if ts & TS.STATIONARY_STUCK:
+                transit.collision_info.frames_stationary_fall = 3
+            elif ts & TS.STATIONARY_STOP:
+                transit.collision_info.frames_stationary_fall = 2
+            elif ts & TS.STATIONARY_FALL:
+                transit.collision_info.frames_stationary_fall = 1
+            found = transit.find_valid_position()
+        finally:
+            Transition.cleanup_transition()
+        return transit if found else None
+
+    def get_object_info(self, transit: Transition, admin_move: bool) -> ObjectInfoState:
+        """The object-info state for a sweep, handing ``transit`` the body's contact on the way.
+
+        EDGE_SLIDE from the state. Unless ``admin_move``: a body in contact that is not moving
+        off its contact plane (``check_contact``) starts on it (CONTACT, and ON_WALKABLE if on
+        walkable ground), one moving off only remembers it as the last known plane; a sliding
+        body starts with its sliding normal. PATH_CLIPPED for a MISSILE. (FREE_ROTATE comes
+        from the setup's ``allow_free_heading``, which acphys setups do not carry yet: never set.)
+
+        Retail: CPhysicsObj::get_object_info @ 0x00511CC0 (acclient.c:319073)
+        """
+        state = ObjectInfoState.EDGE_SLIDE if self.state & PS.EDGE_SLIDE else ObjectInfoState.DEFAULT
+        if not admin_move:
+            if self.transient_state & TS.CONTACT:
+                is_water = bool(self.transient_state & TS.WATER_CONTACT)
+                if self.check_contact(True):
+                    transit.init_contact_plane(self.contact_plane_cell_id, self.contact_plane, is_water)
+                    state |= ObjectInfoState.CONTACT
+                    if self.transient_state & TS.ON_WALKABLE:
+                        state |= ObjectInfoState.ON_WALKABLE
+                else:
+                    transit.init_last_known_contact_plane(
+                        self.contact_plane_cell_id, self.contact_plane, is_water
+                    )
+            if self.transient_state & TS.SLIDING:
+                transit.init_sliding_normal(self.sliding_normal)
+        if self.state & PS.MISSILE:
+            state |= ObjectInfoState.PATH_CLIPPED
+        return state
+
+    def check_contact(self, contact: bool) -> bool:
+        """``contact``, unless the body is in contact and moving off its contact plane
+        (velocity · N > EPSILON).
+
+        Retail: CPhysicsObj::check_contact @ 0x0050F5B0 (acclient.c:316535)
+        """
+        if self.transient_state & TS.CONTACT and self.velocity.dot(self.contact_plane.N) > EPSILON:
+            return False
+        return contact
+
+    @staticmethod
+    def is_valid_walkable(normal: Vector3) -> bool:
+        """A normal a body may stand on: ``z >= floor_z``.
+
+        Retail: CPhysicsObj::is_valid_walkable @ 0x0050F530 (acclient.c:316499)
+        """
+        return normal.z >= FLOOR_Z
 
     def set_position_internal(self, transit: Transition) -> None:
         """Commit a successful sweep: cell, frame, contact, walkable, water, sliding, collisions.
@@ -590,18 +764,26 @@ class PhysicsObj:
         walkable ground (unless sledding). Two or more stationary-fall frames
         zero the velocity. A count of 1 or 2 then adds STATIONARY_FALL or
         STATIONARY_STOP to the bits already set; 0 and 3 clear all three.
-        Landing on walkable ground reports as an environment collision.
-        Object-object collisions are tracked with the collision-sweep issue.
+        Reports come first: every collided object is tracked (and reported
+        once while its record lives), expired records are ended, then
+        touching the environment, or landing on walkable ground, reports as
+        an environment collision. True when anything was reported.
 
         Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807)
         """
         on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
         apply_bounce = not (prev_on_walkable and on_walkable) or bool(self.state & PS.SLEDDING)
         reported = False
+        for obj in list(collisions.collide_object):
+            if obj is not None and self.track_object_collision(obj, prev_has_contact):
+                reported = True
+        self.report_collision_end(False)
         if self.colliding_with_environment:
             self.colliding_with_environment = collisions.collided_with_environment
-        elif collisions.collided_with_environment or (not prev_on_walkable and on_walkable):
-            reported = self.report_environment_collision(prev_has_contact)
+        elif (
+            collisions.collided_with_environment or (not prev_on_walkable and on_walkable)
+        ) and self.report_environment_collision(prev_has_contact):
+            reported = True
 
         frames = collisions.frames_stationary_fall
         if frames <= 1:
@@ -632,8 +814,8 @@ class PhysicsObj:
     def report_environment_collision(self, prev_has_contact: bool) -> bool:
         """Report the first frame of touching the environment; a missile stops aligning to its path.
 
-        The report (retail's weenie callback) is the step event
-        ``collision:environment``, made when ``REPORT_COLLISIONS`` is set.
+        The report, made when ``REPORT_COLLISIONS`` is set, carries the body's velocity and
+        ``prev_has_contact`` (retail's ``EnvCollisionProfile``).
 
         Retail: CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
         """
@@ -641,11 +823,182 @@ class PhysicsObj:
             return False
         reported = bool(self.state & PS.REPORT_COLLISIONS)
         if reported:
-            self.step_events.append("collision:environment")
+            self._receive_collision(
+                CollisionReport(
+                    CollisionKind.ENVIRONMENT, velocity=self.velocity.copy(), me_in_contact=prev_has_contact
+                )
+            )
         self.colliding_with_environment = True
         if self.state & PS.MISSILE:
             self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
         return reported
+
+    def _receive_collision(self, report: CollisionReport) -> None:
+        """Deliver ``report`` to this body: a step event, then ``on_collision``.
+
+        Retail hands the profile to the body's weenie (``DoCollision``, ``DoCollisionEnd``); acphys
+        gates on ``REPORT_COLLISIONS`` alone (every body answers as if it had a weenie), records
+        ``collision:environment``, ``collision:NAME`` or ``collision_end:NAME``, and calls the hook.
+        """
+        if report.kind is CollisionKind.ENVIRONMENT:
+            self.step_events.append("collision:environment")
+        else:
+            other = report.other
+            name = other.name if other is not None and other.name else f"0x{report.other_id:08X}"
+            prefix = "collision_end:" if report.kind is CollisionKind.END else "collision:"
+            self.step_events.append(prefix + name)
+        if self.on_collision is not None:
+            self.on_collision(self, report)
+
+    def track_object_collision(self, obj: PhysicsObj, prev_has_contact: bool) -> bool:
+        """Touch ``obj``: a static one reports as the environment; any other is stamped in the table
+        with the physics time and its ``ETHEREAL`` bit, and reported only if it was not there yet.
+
+        Retail: CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216)
+        """
+        if obj.state & PS.STATIC:
+            return self.report_environment_collision(prev_has_contact)
+        if self.collision_table is None:
+            self.collision_table = CollisionTable()
+        record = CollisionRecord(self.world.physics_time, bool(obj.state & PS.ETHEREAL))
+        if self.collision_table.clobber(obj.id, record):
+            return False
+        return self.report_object_collision(obj, prev_has_contact)
+
+    def report_object_collision(self, obj: PhysicsObj, prev_has_contact: bool) -> bool:
+        """Tell both bodies about a collision between them; True when a report was made.
+
+        An ``obj`` with ``REPORT_COLLISIONS_AS_ENVIRONMENT`` is the environment. Otherwise, unless
+        ``obj`` ignores collisions, this body (with ``REPORT_COLLISIONS``) hears of ``obj`` (an
+        ATTACK with the quadrant it hit if this body is a missile, else an OBJECT), and a missile
+        stops being one (MISSILE, ALIGN_PATH, PATH_CLIPPED cleared). Then ``obj`` (with
+        ``REPORT_COLLISIONS``) hears of this body unless this body ignores collisions. Both OBJECT
+        reports carry this body's velocity minus ``obj``'s. Retail quirk kept: in the report to
+        ``obj`` the missile bit is this body's ``prev_has_contact`` and the in-contact bit is
+        whether this body was a missile (``build_collision_profile`` arguments swapped,
+        acclient.c:320293-320299).
+
+        Retail: CPhysicsObj::report_object_collision @ 0x00513060 (acclient.c:320227)
+        """
+        if obj.state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
+            return self.report_environment_collision(prev_has_contact)
+        reported = False
+        was_missile = bool(self.state & PS.MISSILE)
+        relative = self.velocity - obj.velocity
+        if not obj.state & PS.IGNORE_COLLISIONS:
+            if self.state & PS.REPORT_COLLISIONS:
+                if was_missile:
+                    location = _determine_quadrant(obj.position, obj.get_height(), self.position)
+                    report = CollisionReport(CollisionKind.ATTACK, obj.id, obj, location=location)
+                else:
+                    report = CollisionReport(
+                        CollisionKind.OBJECT,
+                        obj.id,
+                        obj,
+                        velocity=relative.copy(),
+                        me_in_contact=prev_has_contact,
+                        other_is_missile=bool(obj.state & PS.MISSILE),
+                        other_in_contact=bool(obj.transient_state & TS.CONTACT),
+                    )
+                self._receive_collision(report)
+                reported = True
+            if was_missile:
+                self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
+        if obj.state & PS.REPORT_COLLISIONS and not self.state & PS.IGNORE_COLLISIONS:
+            if obj.state & PS.MISSILE:
+                location = _determine_quadrant(self.position, self.get_height(), obj.position)
+                report = CollisionReport(CollisionKind.ATTACK, self.id, self, location=location)
+            else:
+                report = CollisionReport(
+                    CollisionKind.OBJECT,
+                    self.id,
+                    self,
+                    velocity=relative.copy(),
+                    me_in_contact=bool(obj.transient_state & TS.CONTACT),
+                    other_is_missile=prev_has_contact,
+                    other_in_contact=was_missile,
+                )
+            obj._receive_collision(report)
+            reported = True
+        return reported
+
+    def report_object_collision_end(self, object_id: int) -> bool:
+        """Tell both bodies a collision with ``object_id`` ended; False when that object is gone.
+
+        No report when the object reports as the environment. When it no longer exists, only
+        this body hears of the end.
+
+        Retail: CPhysicsObj::report_object_collision_end @ 0x00510A90 (acclient.c:317868)
+        """
+        obj = self.world.get_object(object_id)
+        if obj is None:
+            if self.state & PS.REPORT_COLLISIONS:
+                self._receive_collision(CollisionReport(CollisionKind.END, object_id))
+            return False
+        if not obj.state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
+            if self.state & PS.REPORT_COLLISIONS:
+                self._receive_collision(CollisionReport(CollisionKind.END, object_id, obj))
+            if obj.state & PS.REPORT_COLLISIONS:
+                obj._receive_collision(CollisionReport(CollisionKind.END, self.id, self))
+        return True
+
+    def report_collision_start(self) -> None:
+        """Report again a collision with every object still in the table (used on unhiding).
+
+        Retail: CPhysicsObj::report_collision_start @ 0x00513FD0 (acclient.c:321262)
+        """
+        if self.collision_table is None:
+            return
+        for object_id in self.collision_table.ids():
+            obj = self.world.get_object(object_id)
+            if obj is not None:
+                self.report_object_collision(obj, bool(self.transient_state & TS.CONTACT))
+
+    def report_collision_end(self, force_end: bool) -> None:
+        """Drop and end-report the records untouched for over 1 s, ethereal ones untouched for any
+        time at all, or (``force_end``) every record.
+
+        All expired records are taken out first, in table order, then reported in that order.
+
+        Retail: CPhysicsObj::report_collision_end @ 0x00514620 (acclient.c:321712)
+        """
+        table = self.collision_table
+        if table is None:
+            return
+        now = self.world.physics_time
+        ended = []
+        for object_id in table.ids():
+            record = table.get(object_id)
+            assert record is not None
+            age = now - record.touched_time
+            if age > 1.0 or (record.ethereal and age > 0.0) or force_end:
+                table.remove(object_id)
+                ended.append(object_id)
+        for object_id in ended:
+            self.report_object_collision_end(object_id)
+
+    def check_collision(self, obj: PhysicsObj) -> bool:
+        """Whether this body, where it stands, overlaps ``obj`` (never for a static body).
+
+        A transition with this body's object info (``get_object_info``, not an admin move), its
+        spheres (the dummy sphere without any) and a path from its position to itself asks
+        ``CTransition::check_collisions``: a placement test against ``obj`` alone.
+
+        Retail: CPhysicsObj::check_collision @ 0x00512ED0 (acclient.c:320127)
+        """
+        if self.state & PS.STATIC:
+            return False
+        transit = Transition.make_transition(self.world)
+        try:
+            transit.init_object(self, self.get_object_info(transit, False))
+            if self.part_array is not None and self.part_array.get_num_sphere():
+                transit.init_sphere(self.part_array.get_sphere(), self.scale)
+            else:
+                transit.init_sphere([DUMMY_SPHERE], 1.0)
+            transit.init_path(self.cell, self.position, self.position)
+            return transit.check_collisions(obj)
+        finally:
+            Transition.cleanup_transition()
 
     # -- cells and placement ---------------------------------------------------------------
 
@@ -696,11 +1049,11 @@ class PhysicsObj:
         """Take the body out of the world: out of the lost cell, its shadows and its cell, off the
         ground (telling the movement manager), inactive, with no contact, sliding or stationary state.
 
-        Retail first reports the end of every object collision (``report_collision_end``), which
-        arrives with the collision sweep.
+        First every object collision is ended (``report_collision_end(True)``).
 
         Retail: CPhysicsObj::leave_world @ 0x005155A0 (acclient.c:322653)
         """
+        self.report_collision_end(True)
         self.world.remove_from_lost_cell(self)
         self.transient_state &= ~TS.ACTIVE
         self.remove_shadows_from_cells()
@@ -733,20 +1086,184 @@ class PhysicsObj:
         self.leave_cell()
 
     def enter_world(self, pos: Position) -> bool:
-        """Place the body at ``pos`` in its cell and activate it (placement is not swept yet).
+        """Put the body into the world at ``pos``: store it, then place it sliding.
 
-        Retail: CPhysicsObj::enter_world @ 0x00516310 (acclient.c:323440)
+        Retail: CPhysicsObj::enter_world @ 0x00516310 (acclient.c:323440), which calls
+        CPhysicsObj::enter_world @ 0x00516170 (acclient.c:323345): a parented body cannot;
+        ``update_time`` resyncs; ``set_position`` with PLACEMENT | SLIDE at the stored position
+        must return OK; then a non-static body is activated and the part array and movement
+        manager handle entering the world.
         """
+        self.store_position(pos)
         if self.parent is not None:
             return False
-        self.store_position(pos)
-        cell = self.world.get_cell(self.position.objcell_id)
-        if cell is None:
-            return False
-        self.change_cell(cell)
         self.update_time = self.world.cur_time
+        sps = SetPositionStruct(self.position.copy(), SetPositionFlags.PLACEMENT | SetPositionFlags.SLIDE)
+        if self.set_position(sps) != SetPositionError.OK:
+            return False
         self.set_active(True)
+        if self.part_array is not None:
+            self.part_array.handle_enter_world()
+        if self.movement_manager is not None:
+            self.movement_manager.handle_enter_world()
         return True
+
+    def set_position_simple(self, pos: Position, sliding: bool) -> int:
+        """``set_position`` with TELEPORT | SEND_POSITION_EVENT (and SLIDE when ``sliding``).
+
+        Retail: CPhysicsObj::SetPositionSimple @ 0x005162B0 (acclient.c:323420)
+        """
+        flags = SetPositionFlags.TELEPORT | SetPositionFlags.SEND_POSITION_EVENT
+        if sliding:
+            flags |= SetPositionFlags.SLIDE
+        return self.set_position(SetPositionStruct(pos.copy(), flags))
+
+    def set_position(self, sps: SetPositionStruct) -> int:
+        """Place the body as ``sps`` asks; a :class:`SetPositionError` code (0 is OK).
+
+        A fresh transition (object state 0) carries the body's spheres, scaled (the dummy
+        sphere without any). Retail's pool of ten nested transitions is not modelled: placement
+        never nests here.
+
+        Retail: CPhysicsObj::SetPosition @ 0x005160C0 (acclient.c:323289)
+        """
+        transit = Transition(self.world, self)
+        transit.object_info.init(self, ObjectInfoState.DEFAULT)
+        if self.part_array is not None and self.part_array.get_num_sphere():
+            transit.init_sphere(self.part_array.get_sphere(), self.scale)
+        else:
+            transit.init_sphere([DUMMY_SPHERE], 1.0)
+        return self.set_position_from_struct(sps, transit)
+
+    def set_position_from_struct(self, sps: SetPositionStruct, transit: Transition) -> int:
+        """RANDOM_SCATTER goes straight to the scatter tries; otherwise ``sps.pos`` is tried and,
+        failing that with SCATTER, the scatter tries.
+
+        Retail: CPhysicsObj::SetPositionInternal @ 0x00516040 (acclient.c:323257)
+        """
+        if sps.flags & SetPositionFlags.RANDOM_SCATTER:
+            return self.set_scatter_position_internal(sps, transit)
+        result = self.set_position_with_struct(sps.pos.copy(), sps, transit)
+        if result != SetPositionError.OK and sps.flags & SetPositionFlags.SCATTER:
+            result = self.set_scatter_position_internal(sps, transit)
+        return result
+
+    def set_scatter_position_internal(self, sps: SetPositionStruct, transit: Transition) -> int:
+        """Up to ``num_tries`` placements at ``sps.pos`` moved by ``RollDice(-1, 1)`` times
+        ``xrad`` and ``yrad`` (x then y); the first OK wins. No tries is GENERAL_FAILURE.
+
+        Retail: CPhysicsObj::SetScatterPositionInternal @ 0x00515F00 (acclient.c:323166)
+        """
+        result = SetPositionError.GENERAL_FAILURE
+        for _ in range(sps.num_tries):
+            pos = sps.pos.copy()
+            dx = random.uniform(-1.0, 1.0) * sps.xrad
+            dy = random.uniform(-1.0, 1.0) * sps.yrad
+            pos.frame.origin.x += dx
+            pos.frame.origin.y += dy
+            result = self.set_position_with_struct(pos, sps, transit)
+            if result == SetPositionError.OK:
+                break
+        return result
+
+    def set_position_with_struct(self, p: Position, sps: SetPositionStruct, transit: Transition) -> int:
+        """Place the body at ``p`` through a placement transition and commit it.
+
+        A body with no cell prepares to enter the world. ``adjust_position`` finds the cell
+        under sphere 0's centre; with none the body goes to the lost cell, inactive, and the
+        result is OK. Otherwise DONT_CREATE_CELLS keeps the cell array to loaded cells, and
+        ``check_position_internal`` must succeed (else COLLIDED when ``handle_all_collisions``
+        reports, NO_VALID_POSITION if not), with a cell (else NO_CELL), before the commit.
+        Retail first forces storage and corpse weenies into the cell (``ForceIntoCell``); acphys
+        weenies are never either.
+
+        Retail: CPhysicsObj::SetPositionInternal @ 0x00515BD0 (acclient.c:323034)
+        """
+        if self.cell is None:
+            self.prepare_to_enter_world()
+        new_cell = self.adjust_position(p, transit.sphere_path.local_sphere[0].center, search_cells=True)
+        if new_cell is None:
+            self.prepare_to_leave_visibility()
+            self.store_position(p)
+            self.world.goto_lost_cell(self)
+            self.transient_state &= ~TS.ACTIVE
+            return SetPositionError.OK
+        if sps.flags & SetPositionFlags.DONT_CREATE_CELLS:
+            transit.cell_array.do_not_load_cells = True
+        if not self.check_position_internal(new_cell, p, transit, sps):
+            reported = self.handle_all_collisions(transit.collision_info, False, False)
+            return SetPositionError.COLLIDED if reported else SetPositionError.NO_VALID_POSITION
+        if transit.sphere_path.curr_cell is None:
+            return SetPositionError.NO_CELL
+        self.set_position_internal(transit)
+        return SetPositionError.OK
+
+    def check_position_internal(
+        self, new_cell: ObjCell, new_pos: Position, transit: Transition, sps: SetPositionStruct
+    ) -> bool:
+        """Run the placement; without SLIDE it must stay put: ``new_pos`` takes the placed
+        origin when it moved less than 0.05 m in x and in y (signed, as retail compares) and
+        stayed in ``new_cell``.
+
+        Retail: CPhysicsObj::CheckPositionInternal @ 0x00511E90 (acclient.c:319172)
+        """
+        transit.init_path(new_cell, None, new_pos)
+        slide = bool(sps.flags & SetPositionFlags.SLIDE)
+        if not slide:
+            transit.sphere_path.placement_allows_sliding = False
+        if not transit.find_valid_position():
+            return False
+        if slide:
+            return True
+        placed = transit.sphere_path.curr_pos
+        if (
+            placed.frame.origin.x - new_pos.frame.origin.x < PLACEMENT_TOLERANCE
+            and placed.frame.origin.y - new_pos.frame.origin.y < PLACEMENT_TOLERANCE
+            and placed.objcell_id == new_cell.id
+        ):
+            new_pos.frame.origin.set(placed.frame.origin)
+            return True
+        return False
+
+    def adjust_position(self, p: Position, low_pt: Vector3, search_cells: bool) -> ObjCell | None:
+        """The cell for ``p`` (re-homing ``p.objcell_id``), None for an invalid cell id or none.
+
+        Outdoors, the land cell under the origin. Indoors, the room holding ``low_pt`` (placed
+        by ``p``): the room itself or, with ``search_cells``, one in its stab list (else one
+        through its portals); failing that, a room that sees outside hands over to the land
+        cell under the origin. (Retail's unused ``bDontCreateCells`` argument is dropped.)
+
+        Retail: CPhysicsObj::AdjustPosition @ 0x00511D80 (acclient.c:319116)
+        """
+        index = p.objcell_id & 0xFFFF
+        if not (1 <= index <= 0x40 or 0x100 <= index <= 0xFFFD or index == 0xFFFF):
+            return None
+        world = self.world
+        if index < 0x100:
+            p.objcell_id = adjust_to_outside(p.objcell_id, p.frame.origin)
+            return world.get_cell(p.objcell_id) if p.objcell_id else None
+        visible = world.get_cell(p.objcell_id)
+        if visible is None:
+            return None
+        child = _find_visible_child_cell(visible, p.frame.localtoglobal(low_pt), search_cells, world)
+        if child is not None:
+            p.objcell_id = child.id
+            return child
+        if not visible.seen_outside:
+            return None
+        p.objcell_id = adjust_to_outside(p.objcell_id, p.frame.origin)
+        return world.get_cell(p.objcell_id) if p.objcell_id else None
+
+    def prepare_to_enter_world(self) -> None:
+        """Resync ``update_time``, leave the lost cell and activate a non-static body.
+
+        Retail also takes the body and its children off the destroy list (object maintenance).
+
+        Retail: CPhysicsObj::prepare_to_enter_world @ 0x00511FA0 (acclient.c:319217)
+        """
+        self.update_time = self.world.cur_time
+        self.world.remove_from_lost_cell(self)
+        self.set_active(True)
 
     # -- state setters ---------------------------------------------------------------------
 
@@ -814,7 +1331,8 @@ class PhysicsObj:
             self.set_hidden(bool(new_state & PS.HIDDEN))
 
     def set_hidden(self, hidden: bool) -> None:
-        """Hide: stop reporting collisions and ignore them. Unhide: the reverse.
+        """Hide: end every collision and stop reporting them, and ignore them. Unhide: the reverse,
+        re-reporting the objects still in the collision table when reporting is switched back on.
 
         The retail hide scripts, child no-draw and cell visibility belong to
         rendering and are not ported.
@@ -823,11 +1341,15 @@ class PhysicsObj:
         """
         if hidden:
             self.state |= PS.HIDDEN
-            self.state &= ~PS.REPORT_COLLISIONS
+            if self.state & PS.REPORT_COLLISIONS:
+                self.report_collision_end(True)
+                self.state &= ~PS.REPORT_COLLISIONS
             self.state |= PS.IGNORE_COLLISIONS
         else:
             self.state &= ~(PS.HIDDEN | PS.IGNORE_COLLISIONS)
-            self.state |= PS.REPORT_COLLISIONS
+            if not self.state & PS.REPORT_COLLISIONS:
+                self.state |= PS.REPORT_COLLISIONS
+                self.report_collision_start()
 
     def set_ethereal(self, ethereal: bool, send_event: bool = False) -> bool:
         """Become ethereal, or try to become solid again.
@@ -850,13 +1372,22 @@ class PhysicsObj:
         return False
 
     def ethereal_check_for_collisions(self) -> bool:
-        """Whether the body overlaps another in any cell it shadows.
+        """Whether another body overlaps this one in any cell this body shadows.
 
-        Bodies shadow into cells and collide with each other from the
-        collision-sweep issue on; until then there is nothing to overlap.
+        In each shadowed cell, in order, every shadowed body other than this one and not
+        parented is asked ``check_collision`` against this body (``CObjCell::check_collisions``,
+        acclient.c:347173); the first overlap answers True. Static bodies never overlap here.
 
         Retail: CPhysicsObj::ethereal_check_for_collisions @ 0x00510A40 (acclient.c:317831)
         """
+        for shadow in self.shadow_objects:
+            cell = shadow.cell
+            if cell is None:
+                continue
+            for other_shadow in list(cell.shadow_objects):
+                other = other_shadow.physobj
+                if other.parent is None and other is not self and other.check_collision(self):
+                    return True
         return False
 
     # -- motion: commands in, animation out ------------------------------------------------
@@ -1253,6 +1784,87 @@ class PhysicsObj:
             self.position_manager.unstick()
 
 
+def _determine_quadrant(pos: Position, height: float, p: Position) -> int:
+    """Where ``p``'s origin lies around ``pos``: 0x8 left / 0x10 right, 0x20 front / 0x40 behind,
+    0x1 high / 0x2 middle / 0x4 low (thirds of ``height``), in ``pos``'s local frame.
+
+    Retail: Position::determine_quadrant @ 0x005A9580 (acclient.c:467065)
+    """
+    hit = pos.localtolocal(p, Vector3())
+    quadrant = 0x10 if hit.x >= 0.0 else 0x8
+    quadrant |= 0x20 if hit.y >= 0.0 else 0x40
+    if height * 0.333333333 > hit.z:
+        return quadrant | 0x4
+    if height * 0.66666667 > hit.z:
+        return quadrant | 0x2
+    return quadrant | 0x1
+
+
 def _require_finite(what: str, v: Vector3) -> None:
     if not v.is_finite():
         raise ValueError(f"{what} must be finite, got ({v.x}, {v.y}, {v.z})")
+
+
+def _find_visible_child_cell(
+    cell: EnvCell, origin: Vector3, search_cells: bool, world: World
+) -> ObjCell | None:
+    """The room holding the landblock-local ``origin``: ``cell`` itself, else (``search_cells``)
+    the first loaded cell of its stab list that holds it, else (not searching) the first
+    portal neighbour that does.
+
+    Retail: CEnvCell::find_visible_child_cell @ 0x0052DC50 (acclient.c:349697)
+    """
+    if cell.point_in_cell(origin):
+        return cell
+    if search_cells:
+        candidates = (world.get_cell(cell_id) for cell_id in cell.stab_list)
+    else:
+        candidates = (portal.get_other_cell(world) for portal in cell.portals)
+    for other in candidates:
+        if other is not None and other.point_in_cell(origin):
+            return other
+    return None
+
+
+#: ``CheckPositionInternal``: how far (signed, in x and in y) a placement without SLIDE may move
+#: the body (acclient.c:319180-319181).
+PLACEMENT_TOLERANCE = float32(0.050000001)
+
+
+class SetPositionFlags(enum.IntFlag):
+    """``SetPositionFlag`` (acclient.h:6123): what ``SetPosition`` may do."""
+
+    PLACEMENT = 0x1
+    TELEPORT = 0x2
+    RESTORE = 0x4
+    SLIDE = 0x10
+    DONT_CREATE_CELLS = 0x20
+    SCATTER = 0x100
+    RANDOM_SCATTER = 0x200
+    LINE = 0x400
+    SEND_POSITION_EVENT = 0x1000
+
+
+class SetPositionError(enum.IntEnum):
+    """``SetPositionError`` (acclient.h:6111): what ``SetPosition`` returns."""
+
+    OK = 0x0
+    GENERAL_FAILURE = 0x1
+    NO_VALID_POSITION = 0x2
+    NO_CELL = 0x3
+    COLLIDED = 0x4
+
+
+@dataclass(slots=True)
+class SetPositionStruct:
+    """Retail ``SetPositionStruct`` (acclient.h:52398): a position and how to place a body there.
+
+    Retail: SetPositionStruct::SetPositionStruct @ 0x0051BB50 (acclient.c:329731)
+    """
+
+    pos: Position = field(default_factory=Position)
+    flags: SetPositionFlags = field(default_factory=SetPositionFlags)
+    line: Vector3 = field(default_factory=Vector3)
+    xrad: float = 0.0
+    yrad: float = 0.0
+    num_tries: int = 0

@@ -8,8 +8,10 @@ every step ``CPhysicsObj::UpdatePositionInternal`` asks ``CSequence::update``
 for the offset frame, scales its origin by ``m_scale`` only on walkable ground,
 and composes it onto the body's frame.
 
-Every body stands on the landblock's flat ground (z = 50), which the
-placeholder sweep keeps it on.
+Every body stands on the landblock's flat ground (z = 50). The human's sphere 0 (centre 0.475,
+radius 0.48) reaches 5 mm below its origin, so the sweep rests the origin at 50.005: placement
+and landing lift the sphere onto the terrain plane (OBJECTINFO::validate_walkable,
+acclient.c:314275), walking keeps it there (CTransition::adjust_offset, acclient.c:311976).
 """
 
 from __future__ import annotations
@@ -33,6 +35,8 @@ from acphys.scenario.motion_tables import builtin_motion_table
 from support import LANDBLOCK, place
 
 GROUND = 50.0
+#: Where the human's origin rests on that ground: sphere 0's bottom on the plane.
+REST = GROUND + (0.48 - 0.475)
 #: 90 degrees per second, clockwise seen from above: TurnRight.
 TURN_RATE = math.pi / 2.0
 
@@ -93,7 +97,8 @@ class TestRootMotion:
         _advance(ground, body, 0.05)
         # frame_number 0 -> 30 · 0.05 = 1.5: one boundary, one 1/30-s application of 4 m/s.
         assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0 / 30.0, abs=1e-12)
-        assert body.position.frame.origin.x == 96.0 and body.position.frame.origin.z == GROUND
+        assert body.position.frame.origin.x == 96.0
+        assert body.position.frame.origin.z == pytest.approx(REST, abs=1e-9)
         # Root motion never touches m_velocityVector; cached_velocity is the displacement over the
         # (float32) quantum (UpdateObjectInternal, acclient.c:322718).
         assert body.velocity.exactly_equals(Vector3())
@@ -151,7 +156,7 @@ class TestRootMotion:
         body.set_state(body.state | PS.HIDDEN)
         _advance(ground, body, 0.5)
         # HIDDEN skips CPartArray::Update entirely (UpdatePositionInternal, acclient.c:319988).
-        assert body.position.frame.origin.exactly_equals(Vector3(96.0, 96.0, GROUND))
+        assert body.position.frame.origin == Vector3(96.0, 96.0, REST)
         assert body.position.frame.get_heading() == 0.0
 
 
@@ -173,7 +178,7 @@ class TestTurning:
         body.do_motion(cmd.TURN_RIGHT, _params())
         _advance(ground, body, 1.0)
         assert body.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
-        assert body.position.frame.origin.exactly_equals(Vector3(96.0, 96.0, GROUND))
+        assert body.position.frame.origin == Vector3(96.0, 96.0, REST)
 
     def test_turn_left_is_turn_right_with_negated_speed(self, ground):
         body = _walker(ground)
@@ -285,7 +290,7 @@ class TestJump:
         _advance(ground, body, 2.5)
         assert any("hit_ground" in events for events in seen)
         assert body.transient_state & TS.ON_WALKABLE and body.transient_state & TS.CONTACT
-        assert body.position.frame.origin.z == GROUND
+        assert body.position.frame.origin.z == pytest.approx(REST, abs=1e-9)
         # HitGround replays the movement on the ground: back to the Ready cycle.
         assert interp.interpreted_state.forward_command == cmd.READY
         assert body.part_array.motion_table_manager.state.substate == cmd.READY

@@ -121,7 +121,9 @@ class TestMotionTableFromAScenario:
         trace = tmp_path / "run.jsonl"
         sim.run(trace=trace)
         records = [json.loads(line) for line in trace.read_text().splitlines()]
-        assert records[0]["events"] == ["motion:RunForward"]
+        # enter_world's SetPosition commits the placement on the ground: set_on_walkable reports
+        # hit_ground and handle_all_collisions the environment (acclient.c:323369); then the motion.
+        assert records[0]["events"] == ["hit_ground", "collision:environment", "motion:RunForward"]
         # 30 boundaries of 4/30 m in the second (the link's two, the entry into the cycle, 27 more),
         # plus the link's position frames 0 and 1: overrunning the link leaves before its last frame
         # is composed (CSequence::update_internal, acclient.c:340658).

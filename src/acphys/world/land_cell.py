@@ -8,9 +8,6 @@ Everything is landblock-local: a land cell's ``pos`` origin is its centre
 ``((2cx+1)·12, (2cy+1)·12, 0)`` in its landblock (``ConstructPolygons``,
 acclient.c:354091-354098), and points handed to ``point_in_cell`` are in that landblock's frame.
 
-``validate_walkable`` is ``OBJECTINFO::validate_walkable``; it lives here until ``ObjectInfo``
-gets its methods with the transition issue.
-
 The ``CPhysicsPart`` overloads (``find_transit_cells_for_parts``,
 ``add_all_outside_cells_for_parts``) are what a static object with solid geometry shadows into
 cells with (``CPartArray::calc_cross_cells_static``): the land cells its parts' bounding boxes
@@ -39,10 +36,10 @@ import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from acphys.constants import CELL_LENGTH, EPSILON, FLOOR_Z, MAX_LCOORD
+from acphys.constants import CELL_LENGTH, MAX_LCOORD
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.geometry.bbox import BBox
-from acphys.geometry.plane import Plane, Sidedness
+from acphys.geometry.plane import Sidedness
 from acphys.geometry.polygon import Polygon
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import (
@@ -60,8 +57,6 @@ from acphys.world.terrain import TERRAIN_SURF_CHAR, SurfChar, WaterType
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
     from acphys.physics_part import PhysicsPart
-    from acphys.transition.collision_info import CollisionInfo
-    from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
 
 
@@ -89,85 +84,6 @@ class LandTerrain(Protocol):
     def calc_water_depth(self, cell_id: int, point: Vector3) -> float: ...
 
     def get_terrain(self, cell_id: int, point: Vector3) -> int: ...
-
-
-def is_valid_walkable(normal: Vector3) -> bool:
-    """A normal steep enough to stand on: ``z >= floor_z``.
-
-    Retail: CPhysicsObj::is_valid_walkable @ 0x0050F530 (acclient.c:316499)
-    """
-    return normal.z >= FLOOR_Z
-
-
-def validate_walkable(
-    object_info: ObjectInfo,
-    check_pos: Sphere,
-    contact_plane: Plane,
-    is_water: bool,
-    water_depth: float,
-    path: SpherePath,
-    collisions: CollisionInfo,
-    land_cell_id: int,
-) -> TransitionState:
-    """Rest ``check_pos`` on a terrain plane (lowered by ``water_depth``).
-
-    A viewer is pushed back out along its step when the sphere dips below the plane. A body
-    whose sphere bottom is within EPSILON of the plane touches it; below, it is lifted onto it
-    (ADJUSTED), or COLLIDED while probing walkables or when a step-down would not shorten.
-    Touching or lifted, the plane becomes the contact plane unless the body stands on
-    walkable ground, is not stepping down and the plane is too steep; a body without contact
-    that is not stepping down also gets the plane's normal as its collision normal.
-
-    Retail: OBJECTINFO::validate_walkable @ 0x0050D010 (acclient.c:314160)
-    """
-    state = object_info.state
-    normal = contact_plane.N
-    center = check_pos.center
-    if state & ObjectInfoState.IS_VIEWER:
-        dist = normal.dot(center) + contact_plane.d - check_pos.radius
-        if dist > -EPSILON:
-            return TransitionState.OK
-        step = center - path.global_curr_center[0]
-        t = dist / (step.z * normal.z + step.x * normal.x + step.y * normal.y)
-        if (t <= 0.0 or t > 1.0) and (path.begin_pos.objcell_id & 0xFFFF) >= 0x100:
-            return TransitionState.OK
-        path.add_offset_to_check_pos(step * -t)
-        collisions.set_collision_normal(normal)
-        collisions.collided_with_environment = True
-        return TransitionState.ADJUSTED
-    dist = (
-        center.y * normal.y + (center.z - check_pos.radius) * normal.z + center.x * normal.x
-        + contact_plane.d + water_depth
-    )
-    contact = not state & ObjectInfoState.ON_WALKABLE or is_valid_walkable(normal)
-    if dist >= -EPSILON:
-        if dist > EPSILON:
-            return TransitionState.OK
-        if path.step_down or contact:
-            collisions.set_contact_plane(contact_plane, is_water)
-            collisions.contact_plane_cell_id = land_cell_id
-        result = TransitionState.OK
-    else:
-        if path.check_walkable:
-            return TransitionState.COLLIDED
-        depth = dist / normal.z
-        result = TransitionState.OK
-        if path.step_down or contact:
-            collisions.set_contact_plane(contact_plane, is_water)
-            collisions.contact_plane_cell_id = land_cell_id
-            if path.step_down:
-                if path.step_down_amt * path.walk_interp == 0.0:
-                    raise ValueError("validate_walkable: stepping down with step_down_amt * walk_interp == 0")
-                interp = (1.0 - -1.0 / (path.step_down_amt * path.walk_interp) * depth) * path.walk_interp
-                if interp >= path.walk_interp or interp < -0.1:
-                    return TransitionState.COLLIDED
-                path.walk_interp = interp
-            path.add_offset_to_check_pos(Vector3(0.0, 0.0, -depth))
-            result = TransitionState.ADJUSTED
-    if not state & ObjectInfoState.CONTACT and not path.step_down:
-        collisions.set_collision_normal(normal)
-        collisions.collided_with_environment = True
-    return result
 
 
 class SortCell(ObjCell):
@@ -270,8 +186,16 @@ class LandCell(SortCell):
     def point_in_cell(self, point: Vector3) -> bool:
         """Whether the landblock-local ``point`` lies over one of the triangles (edges count).
 
+        A terrain-less cell (acphys's empty world; retail cells always have their triangles)
+        holds the points ``adjust_to_outside`` maps to it: its 24-m square, closed at the low
+        x and y edges and open at the high ones.
+
         Retail: CLandCell::point_in_cell @ 0x00532D40 (acclient.c:354880)
         """
+        if not self.polygons:
+            cx, cy = divmod((self.id & 0xFFFF) - 1, 8)
+            x0, y0 = cx * CELL_LENGTH, cy * CELL_LENGTH
+            return x0 <= point.x < x0 + CELL_LENGTH and y0 <= point.y < y0 + CELL_LENGTH
         return self.find_terrain_poly(point) is not None
 
     def find_terrain(self, pos: Position) -> SurfChar:
@@ -330,8 +254,7 @@ class LandCell(SortCell):
         water_depth = self.get_water_depth(local_point)
         sphere = path.global_sphere[0]
         check_pos = Sphere(sphere.center - offset, sphere.radius)
-        return validate_walkable(
-            info,
+        return info.validate_walkable(
             check_pos,
             walkable.plane,
             self.water_type != WaterType.NOT_WATER,

@@ -148,6 +148,10 @@ class PartArray:
         """Retail: CPartArray::GetCylsphere @ 0x00518090 (acclient.c:325375)"""
         return self.setup.cylspheres
 
+    def allows_free_heading(self) -> bool:
+        """Retail: CPartArray::AllowsFreeHeading @ 0x005180C0 (acclient.c:325393)"""
+        return self.setup.allow_free_heading
+
     def get_sorting_sphere(self) -> Sphere:
         """Retail: CPartArray::GetSortingSphere @ 0x00518B00 (acclient.c:326267)"""
         return self.setup.sorting_sphere

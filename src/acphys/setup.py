@@ -33,6 +33,8 @@ class Setup:
     step_up_height: float = 0.0
     step_down_height: float = 0.0
     physics_bsp: BSPTree | None = None
+    #: ``allow_free_heading``: the sweep may turn the body to its end heading at once (FREE_ROTATE).
+    allow_free_heading: bool = False
     #: ``sorting_sphere``: what a body without cylspheres shadows into cells with (local, unscaled).
     sorting_sphere: Sphere = field(default_factory=lambda: Sphere(Vector3(), 0.0))
     motion_table: MotionTable | None = None

@@ -91,3 +91,16 @@ def test_the_sorting_sphere_is_the_sphere_around_the_setup_spheres() -> None:
     wide = bounding_sphere([Sphere(Vector3(0, 0, 0), 1.0), middle, Sphere(Vector3(0, 0, 2), 1.0)])
     assert wide.center == Vector3(0.0, 0.0, 1.0)
     assert wide.radius == pytest.approx(10**0.5 + 1.0)
+
+
+def test_a_setup_that_allows_a_free_heading_sweeps_with_free_rotate() -> None:
+    # CPhysicsObj::get_object_info: AllowsFreeHeading -> state |= 0x10 (FREE_ROTATE); CPartArray::
+    # AllowsFreeHeading returns setup->allow_free_heading (acclient.c:319073, 325393).
+    from acphys.flags import ObjectInfoState
+    from acphys.transition.transition import Transition
+
+    world = World()
+    free = PhysicsObj(world, "free", PartArray(Setup("free", allow_free_heading=True)))
+    fixed = PhysicsObj(world, "fixed", PartArray(_setup()))
+    assert free.get_object_info(Transition(world, free), admin_move=False) & ObjectInfoState.FREE_ROTATE
+    assert not fixed.get_object_info(Transition(world, fixed), admin_move=False) & ObjectInfoState.FREE_ROTATE

@@ -660,8 +660,8 @@ class PhysicsObj:
         EDGE_SLIDE from the state. Unless ``admin_move``: a body in contact that is not moving
         off its contact plane (``check_contact``) starts on it (CONTACT, and ON_WALKABLE if on
         walkable ground), one moving off only remembers it as the last known plane; a sliding
-        body starts with its sliding normal. PATH_CLIPPED for a MISSILE. (FREE_ROTATE comes
-        from the setup's ``allow_free_heading``, which acphys setups do not carry yet: never set.)
+        body starts with its sliding normal. FREE_ROTATE when the setup allows a free heading;
+        PATH_CLIPPED for a MISSILE.
 
         Retail: CPhysicsObj::get_object_info @ 0x00511CC0 (acclient.c:319073)
         """
@@ -680,6 +680,8 @@ class PhysicsObj:
                     )
             if self.transient_state & TS.SLIDING:
                 transit.init_sliding_normal(self.sliding_normal)
+        if self.part_array is not None and self.part_array.allows_free_heading():
+            state |= ObjectInfoState.FREE_ROTATE
         if self.state & PS.MISSILE:
             state |= ObjectInfoState.PATH_CLIPPED
         return state

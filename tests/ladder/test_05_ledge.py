@@ -1,0 +1,68 @@
+"""Ladder rung 5: off a ledge a body falls without EDGE_SLIDE and stops at the edge with it."""
+
+from __future__ import annotations
+
+import json
+
+import acphys
+from acphys.flags import PhysicsState, TransientState
+from acphys.math.vector import Vector3
+
+STEP = 3.12 / 30.0  # walk root motion per 30-Hz step (CMotionInterp::get_state_velocity, acclient.c:343538)
+EDGE_Y = 98.0
+TOP = 51.0
+LIFT = 0.005  # sphere 0 (z 0.475, r 0.48) touching its plane puts the origin 0.005 above it
+
+
+def _records(tmp_path, body: str) -> tuple[acphys.Simulation, list[dict]]:
+    sim = acphys.load_scenario("ladder-05-ledge")
+    trace = tmp_path / "ledge.jsonl"
+    sim.run(trace=trace)
+    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    return sim, [record for record in records if record["body"] == body]
+
+
+def test_without_edge_slide_the_walker_walks_off_and_falls(tmp_path):
+    sim, records = _records(tmp_path, "faller")
+    assert not sim.body("faller").state & PhysicsState.EDGE_SLIDE
+    airborne = next(index for index, record in enumerate(records) if "contact" not in record["transient"])
+    before, left = records[airborne - 1], records[airborne]
+    # The step-down (0.4, CTransition::transitional_insert, acclient.c:312833) lowers sphere 0 to
+    # 0.08 above the top; BSPNODE::find_walkable needs it to reach the polygon
+    # (CPolygon::walkable_hits_sphere, acclient.c:360518, polygon_hits_sphere_slow_but_sure,
+    # acclient.c:360006): centre at most sqrt(0.48^2 - 0.08^2) = 0.473 past the edge.
+    # 23 steps (0.392 past) stand; the 24th (0.496 past) finds nothing and CTransition::edge_slide
+    # (acclient.c:312684) accepts it without contact.
+    assert abs(before["origin"][1] - (96.0 + 23 * STEP)) < 1e-6
+    assert abs(before["origin"][2] - (TOP + LIFT)) < 1e-9
+    assert abs(left["origin"][1] - (96.0 + 24 * STEP)) < 1e-6
+    assert abs(left["origin"][2] - (TOP + LIFT)) < 1e-9
+    assert "leave_ground" in left["events"]
+    # Leaving the ground turns the walk into velocity (CMotionInterp::LeaveGround, acclient.c:344456).
+    assert left["velocity"][0] == 0.0
+    assert abs(left["velocity"][1] - 3.12) < 1e-6
+    # It lands on the ground below, clear of the platform.
+    body = sim.body("faller")
+    origin = body.position.frame.origin
+    assert abs(origin.z - (50.0 + LIFT)) < 1e-9
+    assert origin.y > EDGE_Y + 0.48
+    assert body.transient_state & TransientState.CONTACT
+    assert body.transient_state & TransientState.ON_WALKABLE
+
+
+def test_with_edge_slide_the_walker_stops_at_the_edge(tmp_path):
+    sim, records = _records(tmp_path, "edger")
+    body = sim.body("edger")
+    origin = body.position.frame.origin
+    # CTransition::step_down (acclient.c:312628) also asks CTransition::check_walkable
+    # (acclient.c:312474) of an EDGE_SLIDE body: SPHEREPATH::check_walkables (acclient.c:313467)
+    # halves the radius to 0.24, and the probe's BSPLEAF::hits_walkable (acclient.c:364274) uses
+    # CPolygon::check_small_walkable (acclient.c:360311), also r/2. 21 steps (0.184 past the edge)
+    # pass; the 22nd (0.288) is refused, SPHEREPATH::precipice_slide (acclient.c:313979) slides
+    # head-on to COLLIDED and CTransition::validate_transition (acclient.c:312193) rolls it back.
+    assert abs(origin.y - (96.0 + 21 * STEP)) < 1e-6
+    assert abs(origin.z - (TOP + LIFT)) < 1e-9
+    assert body.transient_state & TransientState.CONTACT
+    assert body.transient_state & TransientState.ON_WALKABLE
+    assert all("contact" in record["transient"] for record in records)
+    assert body.velocity.exactly_equals(Vector3())

@@ -890,7 +890,7 @@ class PhysicsObj:
         if not obj.state & PS.IGNORE_COLLISIONS:
             if self.state & PS.REPORT_COLLISIONS:
                 if was_missile:
-                    location = _determine_quadrant(obj.position, obj.get_height(), self.position)
+                    location = obj.position.determine_quadrant(obj.get_height(), self.position)
                     report = CollisionReport(CollisionKind.ATTACK, obj.id, obj, location=location)
                 else:
                     report = CollisionReport(
@@ -908,7 +908,7 @@ class PhysicsObj:
                 self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
         if obj.state & PS.REPORT_COLLISIONS and not self.state & PS.IGNORE_COLLISIONS:
             if obj.state & PS.MISSILE:
-                location = _determine_quadrant(self.position, self.get_height(), obj.position)
+                location = self.position.determine_quadrant(self.get_height(), obj.position)
                 report = CollisionReport(CollisionKind.ATTACK, self.id, self, location=location)
             else:
                 report = CollisionReport(
@@ -1071,7 +1071,11 @@ class PhysicsObj:
             self.movement_manager.leave_ground()
         self.calc_acceleration()
         self.transient_state &= ~(
-            TS.SLIDING | TS.STATIONARY_FALL | TS.STATIONARY_STOP | TS.STATIONARY_STUCK | TS.ACTIVE
+            TS.SLIDING
+            | TS.STATIONARY_FALL
+            | TS.STATIONARY_STOP
+            | TS.STATIONARY_STUCK
+            | TS.ACTIVE
             | TS.CHECK_ETHEREAL
         )
 
@@ -1376,21 +1380,14 @@ class PhysicsObj:
     def ethereal_check_for_collisions(self) -> bool:
         """Whether another body overlaps this one in any cell this body shadows.
 
-        In each shadowed cell, in order, every shadowed body other than this one and not
-        parented is asked ``check_collision`` against this body (``CObjCell::check_collisions``,
-        acclient.c:347173); the first overlap answers True. Static bodies never overlap here.
+        Each shadowed cell in turn asks its other shadowed bodies (``ObjCell.check_collisions``);
+        the first overlap answers True. Static bodies never overlap here.
 
         Retail: CPhysicsObj::ethereal_check_for_collisions @ 0x00510A40 (acclient.c:317831)
         """
-        for shadow in self.shadow_objects:
-            cell = shadow.cell
-            if cell is None:
-                continue
-            for other_shadow in list(cell.shadow_objects):
-                other = other_shadow.physobj
-                if other.parent is None and other is not self and other.check_collision(self):
-                    return True
-        return False
+        return any(
+            shadow.cell is not None and shadow.cell.check_collisions(self) for shadow in self.shadow_objects
+        )
 
     # -- motion: commands in, animation out ------------------------------------------------
 
@@ -1784,22 +1781,6 @@ class PhysicsObj:
         """
         if self.position_manager is not None:
             self.position_manager.unstick()
-
-
-def _determine_quadrant(pos: Position, height: float, p: Position) -> int:
-    """Where ``p``'s origin lies around ``pos``: 0x8 left / 0x10 right, 0x20 front / 0x40 behind,
-    0x1 high / 0x2 middle / 0x4 low (thirds of ``height``), in ``pos``'s local frame.
-
-    Retail: Position::determine_quadrant @ 0x005A9580 (acclient.c:467065)
-    """
-    hit = pos.localtolocal(p, Vector3())
-    quadrant = 0x10 if hit.x >= 0.0 else 0x8
-    quadrant |= 0x20 if hit.y >= 0.0 else 0x40
-    if height * 0.333333333 > hit.z:
-        return quadrant | 0x4
-    if height * 0.66666667 > hit.z:
-        return quadrant | 0x2
-    return quadrant | 0x1
 
 
 def _require_finite(what: str, v: Vector3) -> None:

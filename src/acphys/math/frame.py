@@ -106,6 +106,22 @@ class Frame:
         norm = self.qw * self.qw + self.qx * self.qx + self.qy * self.qy + self.qz * self.qz
         return not (math.isnan(norm) or abs(norm - 1.0) > EPSILON * 5.0)
 
+    def is_equal(self, other: Frame) -> bool:
+        """Origins within EPSILON on every axis (``<=``) and quaternions strictly within EPSILON
+        (``Frame::is_quaternion_equal`` @ 0x00424C70, acclient.c:96712).
+
+        Retail: Frame::is_equal @ 0x00424C30 (acclient.c:96699)
+        """
+        return (
+            abs(self.origin.x - other.origin.x) <= EPSILON
+            and abs(self.origin.y - other.origin.y) <= EPSILON
+            and abs(self.origin.z - other.origin.z) <= EPSILON
+            and abs(self.qw - other.qw) < EPSILON
+            and abs(self.qx - other.qx) < EPSILON
+            and abs(self.qy - other.qy) < EPSILON
+            and abs(self.qz - other.qz) < EPSILON
+        )
+
     def is_valid_except_for_heading(self) -> bool:
         """True when the origin is a number but some quaternion component is NaN.
 

@@ -49,3 +49,18 @@ class Position:
         """
         block = get_block_offset(self.objcell_id, other.objcell_id)
         return self.frame.globaltolocal(other.frame.localtoglobal(v) + block)
+
+    def determine_quadrant(self, height: float, p: Position) -> int:
+        """Where ``p``'s origin lies around this position: 0x8 left / 0x10 right, 0x20 front /
+        0x40 behind, 0x1 high / 0x2 middle / 0x4 low (thirds of ``height``), in this local frame.
+
+        Retail: Position::determine_quadrant @ 0x005A9580 (acclient.c:467065)
+        """
+        hit = self.localtolocal(p, Vector3())
+        quadrant = 0x10 if hit.x >= 0.0 else 0x8
+        quadrant |= 0x20 if hit.y >= 0.0 else 0x40
+        if height * 0.333333333 > hit.z:
+            return quadrant | 0x4
+        if height * 0.66666667 > hit.z:
+            return quadrant | 0x2
+        return quadrant | 0x1

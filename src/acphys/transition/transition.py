@@ -44,7 +44,6 @@ from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import adjust_to_outside, get_block_offset
-from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo, x87_divide
@@ -56,7 +55,7 @@ if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
     from acphys.world.obj_cell import CellSource, ObjCell
 
-__all__ = ["MAX_TRANSITION_LEVEL", "InsertType", "SpherePath", "Transition", "frame_is_equal"]
+__all__ = ["MAX_TRANSITION_LEVEL", "InsertType", "SpherePath", "Transition"]
 
 TS = TransitionState
 OI = ObjectInfoState
@@ -65,23 +64,6 @@ OI = ObjectInfoState
 MAX_TRANSITION_LEVEL = 10
 #: The step-down (and step-up) height of a body not on walkable ground (acclient.c:312807, 312966).
 SMALL_STEP_DOWN_HEIGHT = 0.039999999
-
-
-def frame_is_equal(a: Frame, b: Frame) -> bool:
-    """Origins within EPSILON on every axis (``<=``) and quaternions strictly within EPSILON
-    (``Frame::is_quaternion_equal`` @ 0x00424C70, acclient.c:96712).
-
-    Retail: Frame::is_equal @ 0x00424C30 (acclient.c:96699)
-    """
-    return (
-        abs(a.origin.x - b.origin.x) <= EPSILON
-        and abs(a.origin.y - b.origin.y) <= EPSILON
-        and abs(a.origin.z - b.origin.z) <= EPSILON
-        and abs(a.qw - b.qw) < EPSILON
-        and abs(a.qx - b.qx) < EPSILON
-        and abs(a.qy - b.qy) < EPSILON
-        and abs(a.qz - b.qz) < EPSILON
-    )
 
 
 class Transition:
@@ -727,9 +709,7 @@ class Transition:
             return TS.OK
         block = get_block_offset(path.curr_pos.objcell_id, path.check_pos.objcell_id)
         step = path.global_sphere[0].center - path.global_curr_center[0]
-        along = (
-            (block.z + step.z) * normal.z + (block.y + step.y) * normal.y + (block.x + step.x) * normal.x
-        )
+        along = (block.z + step.z) * normal.z + (block.y + step.y) * normal.y + (block.x + step.x) * normal.x
         if along <= 0.0:
             path.add_offset_to_check_pos(normal * along)
             info.set_collision_normal(normal)
@@ -761,8 +741,8 @@ class Transition:
         info = self.collision_info
         obj = self.object_info
         moved = True
-        unchanged = path.check_pos.objcell_id == path.curr_pos.objcell_id and frame_is_equal(
-            path.check_pos.frame, path.curr_pos.frame
+        unchanged = path.check_pos.objcell_id == path.curr_pos.objcell_id and path.check_pos.frame.is_equal(
+            path.curr_pos.frame
         )
         if ts != TS.OK or unchanged:
             moved = False

@@ -38,7 +38,7 @@ Divergences from ACE's ``ObjCell.cs`` (the decompilation wins):
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, NamedTuple, Protocol
+from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
 from acphys.flags import ObjectInfoState, TransitionState
 from acphys.geometry.sphere import Sphere
@@ -75,11 +75,13 @@ class CellTransition(Protocol):
 
 
 class ShadowBody(Protocol):
-    """The body side of a shadow: ``CPhysicsObj::FindObjCollisions`` arrives with the transition."""
+    """The body side of a shadow (``PhysicsObj``): its collisions with a sweep and with a body."""
 
     parent: object | None
 
-    def find_obj_collisions(self, transition: CellTransition) -> TransitionState: ...
+    def find_obj_collisions(self, transition: Any) -> TransitionState: ...
+
+    def check_collision(self, obj: Any) -> bool: ...
 
 
 class BlockWater(Protocol):
@@ -275,6 +277,16 @@ class ObjCell:
             if result != TransitionState.OK:
                 break
         return result
+
+    def check_collisions(self, obj: ShadowBody) -> bool:
+        """Whether a body shadowed here (not ``obj``, not parented) overlaps ``obj``.
+
+        Retail: CObjCell::check_collisions @ 0x0052B7B0 (acclient.c:347173)
+        """
+        return any(
+            other.parent is None and other is not obj and other.check_collision(obj)
+            for other in (shadow.physobj for shadow in self.shadow_objects)
+        )
 
     def check_entry_restrictions(self, transition: CellTransition) -> TransitionState:
         """COLLIDED without a moving object; OK unless a player's weenie meets a restriction

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import acphys
 from acphys.flags import PhysicsState, TransientState
@@ -66,3 +67,56 @@ def test_with_edge_slide_the_walker_stops_at_the_edge(tmp_path):
     assert body.transient_state & TransientState.ON_WALKABLE
     assert all("contact" in record["transient"] for record in records)
     assert body.velocity.exactly_equals(Vector3())
+
+
+CREASE_X = 144.0  # landblock 0xABB4: flat (50 m) up to vertex column 6, then 50 m down over 24 m
+
+
+def _stuck_index(records: list[dict]) -> int:
+    return next(i for i in range(1, len(records)) if records[i]["origin"] == records[i - 1]["origin"])
+
+
+def test_cliff_slide_stops_a_walker_at_the_crease(tmp_path):
+    sim, records = _records(tmp_path, "cliffer")
+    body = sim.body("cliffer")
+    # CLandCell::find_env_collisions (acclient.c:355028) tests only the triangle under sphere 0's
+    # low point: 14 steps east (143.956) stand on the flat. The 15th (144.06) meets no plane; the
+    # 0.4 step-down lands on the cliff face (normal z 0.433), which CTransition::step_down refuses
+    # (acclient.c:312666), and CTransition::edge_slide (acclient.c:312710-312714) hands it to
+    # CTransition::cliff_slide, which takes the whole eastward step back (acclient.c:312065).
+    stuck = _stuck_index(records)
+    assert stuck == 14
+    assert abs(records[stuck]["origin"][0] - (142.5 + 14 * STEP)) < 1e-6
+    assert all(record["origin"][0] < CREASE_X for record in records)
+    origin = body.position.frame.origin
+    assert abs(origin.x - (142.5 + 14 * STEP)) < 1e-6
+    assert abs(origin.y - 96.0) < 1e-9
+    assert abs(origin.z - (50.0 + LIFT)) < 1e-9
+    # The slid step ends where it began: CTransition::validate_transition counts a stationary frame
+    # (acclient.c:312312) and CPhysicsObj::handle_all_collisions sets STATIONARY_FALL; cliff_slide's
+    # collision normal (-x, acclient.c:312065-312071) becomes the sliding normal (acclient.c:312271).
+    assert "stationary_fall" in records[stuck]["transient"]
+    assert "sliding" in records[stuck]["transient"]
+    assert body.transient_state & TransientState.CONTACT
+    assert body.transient_state & TransientState.ON_WALKABLE
+
+
+def test_cliff_slide_turns_an_oblique_walker_along_the_crease(tmp_path):
+    sim, records = _records(tmp_path, "slider")
+    # Heading 60: each step is (STEP sin 60, STEP cos 60). 16 steps reach x 143.941; the 17th
+    # would cross the crease, and cliff_slide removes only its +x part (acclient.c:312065): the
+    # walker keeps going north along the crease, STEP cos 60 a step, x pinned. The next step runs
+    # into the sliding normal and CTransition::adjust_offset (acclient.c:311863) turns it along
+    # the crease itself; the one after has no sliding normal and cliff-slides again.
+    dx, dy = STEP * math.sin(math.radians(60.0)), STEP * math.cos(math.radians(60.0))
+    edge_x = 142.5 + 16 * dx
+    assert edge_x < CREASE_X < edge_x + dx
+    for index, record in enumerate(records[16:40], start=16):
+        assert abs(record["origin"][0] - edge_x) < 1e-6
+        assert abs(record["origin"][1] - (90.0 + (index + 1) * dy)) < 1e-6
+        assert abs(record["origin"][2] - (50.0 + LIFT)) < 1e-9
+        assert "contact" in record["transient"]
+    assert abs(records[15]["origin"][0] - edge_x) < 1e-6
+    body = sim.body("slider")
+    assert body.transient_state & TransientState.ON_WALKABLE
+    assert body.position.frame.origin.y > 90.0 + 40 * dy

@@ -11,7 +11,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
+    from acphys.managers.target import TargetInfo
     from acphys.math.frame import Frame
+    from acphys.math.position import Position
     from acphys.physics_obj import PhysicsObj
 
 
@@ -30,6 +32,18 @@ class PositionManager(Protocol):
 
     def is_interpolating(self) -> bool: ...
 
+    def interpolate_to(self, p: Position, keep_heading: bool) -> None: ...
+
+    def stop_interpolating(self) -> None: ...
+
+    def get_sticky_object_id(self) -> int: ...
+
+    def constrain_to(self, p: Position, start_distance: float, max_distance: float) -> None: ...
+
+    def unconstrain(self) -> None: ...
+
+    def handle_update_target(self, target_info: TargetInfo) -> None: ...
+
 
 class DetectionManager(Protocol):
     def check_detection(self) -> None: ...
@@ -40,7 +54,7 @@ class TargetInfoLike(Protocol):
 
 
 class TargetManager(Protocol):
-    """Retail ``TargetManager``: tracks the object a move-to or turn-to is aimed at."""
+    """Retail ``TargetManager``: the object this body tracks, and the bodies tracking it."""
 
     target_info: TargetInfoLike | None
 
@@ -52,13 +66,39 @@ class TargetManager(Protocol):
 
     def set_target_quantum(self, new_quantum: float) -> None: ...
 
+    def add_voyeur(self, object_id: int, radius: float, quantum: float) -> None: ...
+
+    def remove_voyeur(self, object_id: int) -> bool: ...
+
+    def receive_update(self, target_update: TargetInfo) -> None: ...
+
 
 class ParticleManager(Protocol):
+    """Retail ``ParticleManager``: the body's particle emitters by id."""
+
     def update_particles(self) -> None: ...
+
+    def create_particle_emitter(
+        self, physobj: PhysicsObj, emitter_info_id: int, part_index: int, offset: Frame, emitter_id: int
+    ) -> int: ...
+
+    def create_blocking_particle_emitter(
+        self, physobj: PhysicsObj, emitter_info_id: int, part_index: int, offset: Frame, emitter_id: int
+    ) -> int: ...
+
+    def destroy_particle_emitter(self, emitter_id: int) -> bool: ...
+
+    def stop_particle_emitter(self, emitter_id: int) -> bool: ...
+
+    def get_num_emitters(self) -> int: ...
 
 
 class ScriptManager(Protocol):
+    """Retail ``ScriptManager``: the body's queue of physics scripts."""
+
     def update_scripts(self) -> None: ...
+
+    def add_script(self, script_id: int) -> bool: ...
 
 
 class PhysicsObjHook(Protocol):

@@ -72,6 +72,8 @@ from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
 
 if TYPE_CHECKING:
     from acphys.geometry.sphere import SphereTransition
+    from acphys.managers.scripts import PhysicsScriptTable
+    from acphys.managers.target import TargetInfo
     from acphys.motion.interp import MotionInterp
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
@@ -238,6 +240,8 @@ class PhysicsObj:
         self.elasticity = DEFAULT_ELASTICITY
         self.scale = 1.0
         self.translucency = 0.0
+        #: ``translucencyOriginal``: the floor ``SetTranslucencyInternal`` keeps translucency above.
+        self.translucency_original = 0.0
         self.update_time = 0.0
         self.jumped_this_frame = False
         self.colliding_with_environment = False
@@ -257,6 +261,11 @@ class PhysicsObj:
         self.target_manager: TargetManager | None = None
         self.particle_manager: ParticleManager | None = None
         self.script_manager: ScriptManager | None = None
+        #: ``physics_script_table``, ``default_script`` (a PScriptType) and ``default_script_intensity``:
+        #: what ``play_default_script`` plays (acphys: a ``managers.scripts.PhysicsScriptTable``).
+        self.physics_script_table: PhysicsScriptTable | None = None
+        self.default_script = 0
+        self.default_script_intensity = 0.0
 
         #: ``shadow_objects``: this body's entry in every cell it overlaps (CShadowObj).
         self.shadow_objects: list[ShadowObj] = []
@@ -576,14 +585,177 @@ class PhysicsObj:
         self.step_events.append(event)
 
     def process_fp_hook(self, hook_type: HookType, value: float, user_data: int) -> None:
-        """Apply one tween value: scale and translucency are the body's; part-level ones wait for parts.
+        """Apply one tween value: scale, translucency, a part-array look, or a delayed script.
+
+        ``user_data`` is the part index of the per-part looks and the script id
+        of CALL_PES. The part array's lighting and per-part translucency are
+        render state acphys does not keep: with a part array they are recorded
+        as ``fp_hook:<KIND>:<user_data>=<value>`` events.
 
         Retail: CPhysicsObj::process_fp_hook @ 0x005135C0 (acclient.c:320571)
         """
         if hook_type == HookType.SCALE:
             self.set_scale_static(value)
         elif hook_type == HookType.TRANSLUCENCY:
-            self.translucency = value
+            self.set_translucency_internal(value)
+        elif hook_type == HookType.CALL_PES:
+            self.call_pes_internal(user_data, value)
+        elif self.part_array is not None:
+            self.record_event(f"fp_hook:{hook_type.name}:{user_data}={value:.6g}")
+
+    def _tween(self, hook_type: HookType, start: float, end: float, delta: float, user_data: int = 0) -> None:
+        """Tween from ``start`` to ``end`` over ``delta`` s (≥ EPSILON; newest hook first), else set ``end``.
+
+        The shared shape of SetTranslucency(2), SetPartTranslucency, SetLuminosity,
+        SetPartLuminosity, SetDiffusion and SetPartDiffusion: each one's immediate
+        branch is the ``process_fp_hook`` case of its kind.
+        """
+        if delta >= EPSILON:
+            self.hooks.insert(0, FPHook(hook_type, self.world.physics_time, delta, start, end, user_data))
+        else:
+            self.process_fp_hook(hook_type, end, user_data)
+
+    def set_translucency_internal(self, translucency: float) -> None:
+        """Set translucency, never below ``translucency_original``.
+
+        Retail: CPhysicsObj::SetTranslucencyInternal @ 0x0050F960 (acclient.c:316802)
+        """
+        self.translucency = max(translucency, self.translucency_original)
+
+    def set_translucency(self, translucency: float, delta: float = 0.0) -> None:
+        """Translucency to ``translucency`` now, or over ``delta`` s tweened from 0.0 (not from the
+        current value: retail's hook starts at 0).
+
+        Retail: CPhysicsObj::SetTranslucency @ 0x005115F0 (acclient.c:318693)
+        """
+        self._tween(HookType.TRANSLUCENCY, 0.0, translucency, delta)
+
+    def set_translucency2(self, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetTranslucency2 @ 0x0050FB50 (acclient.c:316920)"""
+        self._tween(HookType.TRANSLUCENCY, start, end, delta)
+
+    def set_part_translucency(self, part_index: int, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetPartTranslucency @ 0x00511730 (acclient.c:318758)"""
+        self._tween(HookType.PART_TRANSLUCENCY, start, end, delta, part_index)
+
+    def set_luminosity(self, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetLuminosity @ 0x00511890 (acclient.c:318826)"""
+        self._tween(HookType.LUMINOSITY, start, end, delta)
+
+    def set_part_luminosity(self, part_index: int, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetPartLuminosity @ 0x005117E0 (acclient.c:318792)"""
+        self._tween(HookType.PART_LUMINOSITY, start, end, delta, part_index)
+
+    def set_diffusion(self, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetDiffusion @ 0x005119E0 (acclient.c:318894)"""
+        self._tween(HookType.DIFFUSION, start, end, delta)
+
+    def set_part_diffusion(self, part_index: int, start: float, end: float, delta: float) -> None:
+        """Retail: CPhysicsObj::SetPartDiffusion @ 0x00511930 (acclient.c:318860)"""
+        self._tween(HookType.PART_DIFFUSION, start, end, delta, part_index)
+
+    # -- scripts and particles -------------------------------------------------------------
+
+    def call_pes(self, pes: int, delta: float) -> None:
+        """Play script ``pes`` now, or after a random pause in [0, ``delta``] (a CALL_PES hook).
+
+        Retail: CPhysicsObj::CallPES @ 0x00511AF0 (acclient.c:318972)
+        """
+        if delta >= EPSILON:
+            pause = random.uniform(0.0, delta)
+            self.hooks.insert(0, FPHook(HookType.CALL_PES, self.world.physics_time, pause, 0.0, 1.0, pes))
+        elif self.cell is not None:
+            self.play_script_internal(pes)
+
+    def call_pes_internal(self, pes: int, cur_value: float) -> None:
+        """The CALL_PES hook's tick: play ``pes`` once the tween has reached 1 (body in a cell).
+
+        Retail: CPhysicsObj::CallPESInternal @ 0x00511AC0 (acclient.c:318962)
+        """
+        if cur_value >= 1.0 and self.cell is not None:
+            self.play_script_internal(pes)
+
+    def play_script_internal(self, script_id: int) -> bool:
+        """Queue script ``script_id`` on the script manager (made here when missing); False for id 0.
+
+        Retail: CPhysicsObj::play_script_internal @ 0x00510CD0 (acclient.c:318034)
+        """
+        if not script_id:
+            return False
+        if self.script_manager is None:
+            from acphys.managers.scripts import ScriptManager as RetailScriptManager
+
+            self.script_manager = RetailScriptManager(self)
+        return self.script_manager.add_script(script_id)
+
+    def play_script(self, script_id: int) -> bool:
+        """Play script ``script_id``; a body outside the world only answers True.
+
+        Retail: CPhysicsObj::play_script @ 0x00510D30 (acclient.c:318069)
+        """
+        if self.cell is None:
+            return True
+        return self.play_script_internal(script_id)
+
+    def play_script_type(self, script_type: int, mod: float) -> bool:
+        """Play the ``physics_script_table``'s script for ``script_type`` at intensity ``mod``
+        (retail's ``play_script(PScriptType, float)`` overload).
+
+        Retail: CPhysicsObj::play_script @ 0x00513260 (acclient.c:320325)
+        """
+        if self.cell is None:
+            return True
+        if self.physics_script_table is None:
+            return False
+        return self.play_script_internal(self.physics_script_table.get_script(script_type, mod))
+
+    def play_default_script(self) -> bool:
+        """Play ``default_script`` at ``default_script_intensity`` from the script table.
+
+        Retail: CPhysicsObj::play_default_script @ 0x005132B0 (acclient.c:320350)
+        """
+        return self.play_script_type(self.default_script, self.default_script_intensity)
+
+    def _make_particle_manager(self) -> ParticleManager:
+        """The particle manager, made first when the body has none (inline in the create calls)."""
+        if self.particle_manager is None:
+            from acphys.managers.particles import ParticleManager as RetailParticleManager
+
+            self.particle_manager = RetailParticleManager()
+        return self.particle_manager
+
+    def create_particle_emitter(
+        self, emitter_info_id: int, part_index: int, offset: Frame, emitter_id: int
+    ) -> int:
+        """Start an emitter (replacing one with the same non-zero ``emitter_id``); its id, or 0.
+
+        Retail: CPhysicsObj::create_particle_emitter @ 0x0050F360 (acclient.c:316329)
+        """
+        manager = self._make_particle_manager()
+        return manager.create_particle_emitter(self, emitter_info_id, part_index, offset, emitter_id)
+
+    def create_blocking_particle_emitter(
+        self, emitter_info_id: int, part_index: int, offset: Frame, emitter_id: int
+    ) -> int:
+        """Start an emitter unless ``emitter_id`` is already playing; its id, or 0.
+
+        Retail: CPhysicsObj::create_blocking_particle_emitter @ 0x0050F3B0 (acclient.c:316355)
+        """
+        manager = self._make_particle_manager()
+        return manager.create_blocking_particle_emitter(self, emitter_info_id, part_index, offset, emitter_id)
+
+    def destroy_particle_emitter(self, emitter_id: int) -> bool:
+        """Retail: CPhysicsObj::destroy_particle_emitter @ 0x0050F400 (acclient.c:316381)"""
+        manager = self.particle_manager
+        return manager is not None and manager.destroy_particle_emitter(emitter_id)
+
+    def stop_particle_emitter(self, emitter_id: int) -> bool:
+        """Retail: CPhysicsObj::stop_particle_emitter @ 0x0050F420 (acclient.c:316395)"""
+        return self.particle_manager is not None and self.particle_manager.stop_particle_emitter(emitter_id)
+
+    def get_num_emitters(self) -> int:
+        """Retail: CPhysicsObj::get_num_emitters @ 0x0050F440 (acclient.c:316409)"""
+        return self.particle_manager.get_num_emitters() if self.particle_manager is not None else 0
 
     def set_scale(self, new_scale: float, delta: float = 0.0) -> None:
         """Scale the body now, or tween to ``new_scale`` over ``delta`` seconds (≥ EPSILON).
@@ -1718,6 +1890,13 @@ class PhysicsObj:
 
     # -- what the motion code asks of the body and its managers ----------------------------
 
+    def get_velocity(self) -> Vector3:
+        """The velocity the last step actually moved at (``cached_velocity``, a copy), not ``velocity``.
+
+        Retail: CPhysicsObj::get_velocity @ 0x005113C0 (acclient.c:318565)
+        """
+        return self.cached_velocity.copy()
+
     def get_radius(self) -> float:
         """Retail: CPhysicsObj::GetRadius @ 0x0050E9C0 (acclient.c:315672)"""
         return self.part_array.get_radius() if self.part_array is not None else 0.0
@@ -1730,20 +1909,21 @@ class PhysicsObj:
         """Retail: CPhysicsObj::IsInterpolating @ 0x0050EB50 (acclient.c:315846)"""
         return self.position_manager is not None and bool(self.position_manager.is_interpolating())
 
-    def set_target(self, context_id: int, object_id: int, radius: float, quantum: float) -> None:
-        """Ask the body's target manager to track ``object_id``.
+    def _make_target_manager(self) -> TargetManager:
+        """The target manager, created first when the body has none (inline in set_target and
+        add_voyeur, acclient.c:315999-316006 and 316064-316071)."""
+        if self.target_manager is None:
+            from acphys.managers.target import TargetManager as RetailTargetManager
 
-        Retail creates the target manager here when the body has none; acphys has
-        no target manager to create yet, so a body without one is refused.
+            self.target_manager = RetailTargetManager(self)
+        return self.target_manager
+
+    def set_target(self, context_id: int, object_id: int, radius: float, quantum: float) -> None:
+        """Track ``object_id`` through the target manager (made here when the body has none).
 
         Retail: CPhysicsObj::set_target @ 0x0050ED30 (acclient.c:315991)
         """
-        if self.target_manager is None:
-            raise ValueError(
-                f"body {self.name!r} has no target manager to track object 0x{object_id:08X} with "
-                "(a move or turn to an object needs one)"
-            )
-        self.target_manager.set_target(context_id, object_id, radius, quantum)
+        self._make_target_manager().set_target(context_id, object_id, radius, quantum)
 
     def clear_target(self) -> None:
         """Retail: CPhysicsObj::clear_target @ 0x0050ED90 (acclient.c:316011)"""
@@ -1762,17 +1942,54 @@ class PhysicsObj:
         if self.target_manager is not None:
             self.target_manager.set_target_quantum(new_quantum)
 
-    def get_position_manager(self) -> PositionManager:
-        """The body's position manager.
+    def add_voyeur(self, object_id: int, radius: float, quantum: float) -> None:
+        """Let ``object_id`` track this body (the target manager is made here when missing).
+        Retail's parameter is a float, so ``quantum`` reaches the voyeur table narrowed to float32.
 
-        Retail creates one here when the body has none (``MakePositionManager``);
-        acphys has no position manager to create yet, so a body without one is refused.
+        Retail: CPhysicsObj::add_voyeur @ 0x0050EE00 (acclient.c:316056)
+        """
+        self._make_target_manager().add_voyeur(object_id, radius, float32(quantum))
+
+    def remove_voyeur(self, object_id: int) -> bool:
+        """Retail: CPhysicsObj::remove_voyeur @ 0x0050EE50 (acclient.c:316076)"""
+        return self.target_manager is not None and self.target_manager.remove_voyeur(object_id)
+
+    def receive_target_update(self, info: TargetInfo) -> None:
+        """Retail: CPhysicsObj::receive_target_update @ 0x0050EDE0 (acclient.c:316046)"""
+        if self.target_manager is not None:
+            self.target_manager.receive_update(info)
+
+    def handle_update_target(self, target_info: TargetInfo) -> None:
+        """Pass a target report (a copy each) to the movement and position managers; reports with a
+        non-zero context id are not for them.
+
+        Retail: CPhysicsObj::HandleUpdateTarget @ 0x00512BC0 (acclient.c:319966)
+        """
+        if target_info.context_id:
+            return
+        if self.movement_manager is not None:
+            self.movement_manager.handle_update_target(target_info.copy())
+        if self.position_manager is not None:
+            self.position_manager.handle_update_target(target_info.copy())
+
+    def make_position_manager(self) -> PositionManager:
+        """Create the position manager if the body has none; a non-static body becomes active.
+
+        Retail: CPhysicsObj::MakePositionManager @ 0x00510210 (acclient.c:317430)
+        """
+        if self.position_manager is None:
+            from acphys.managers.position import PositionManager as RetailPositionManager
+
+            self.position_manager = RetailPositionManager(self)
+        self._activate_for_movement()
+        return self.position_manager
+
+    def get_position_manager(self) -> PositionManager:
+        """The body's position manager, made first when the body has none.
 
         Retail: CPhysicsObj::get_position_manager @ 0x00512130 (acclient.c:319308)
         """
-        if self.position_manager is None:
-            raise ValueError(f"body {self.name!r} has no position manager to stick to its target with")
-        return self.position_manager
+        return self.make_position_manager()
 
     def unstick_from_object(self) -> None:
         """Let go of a sticky target (through the position manager, if any).
@@ -1781,6 +1998,73 @@ class PhysicsObj:
         """
         if self.position_manager is not None:
             self.position_manager.unstick()
+
+    def interpolate_to(self, p: Position, keep_heading: bool) -> None:
+        """Glide to a server position (``keep_heading``: keep facing as now).
+
+        Retail: CPhysicsObj::InterpolateTo @ 0x005104F0 (acclient.c:317580)
+        """
+        self.make_position_manager().interpolate_to(p, keep_heading)
+
+    def stop_interpolating(self) -> None:
+        """Retail: CPhysicsObj::StopInterpolating @ 0x0050EB40 (acclient.c:315836)"""
+        if self.position_manager is not None:
+            self.position_manager.stop_interpolating()
+
+    def stick_to_object(self, object_id: int) -> None:
+        """Stick to ``object_id``'s top-level object (its parent, if parented), with its radius and
+        height; an unknown id only makes the position manager.
+
+        Retail: CPhysicsObj::stick_to_object @ 0x005127E0 (acclient.c:319724)
+        """
+        manager = self.make_position_manager()
+        target = self.world.get_object(object_id)
+        if target is None:
+            return
+        if target.parent is not None:
+            target = target.parent
+        manager.stick_to(target.id, target.get_radius(), target.get_height())
+
+    def get_sticky_object_id(self) -> int:
+        """Retail: CPhysicsObj::get_sticky_object_id @ 0x0050EAF0 (acclient.c:315807)"""
+        return self.position_manager.get_sticky_object_id() if self.position_manager is not None else 0
+
+    def constrain_to(self, p: Position, start_distance: float, max_distance: float) -> None:
+        """Leash the body to ``p`` (offsets damped from ``start_distance``, none past ``max_distance``).
+
+        Retail: CPhysicsObj::ConstrainTo @ 0x00510520 (acclient.c:317590)
+        """
+        self.make_position_manager().constrain_to(p, start_distance, max_distance)
+
+    def _distance_for_place(self, player_indoors: float, player_outdoors: float, indoors: float,
+                            outdoors: float) -> float:
+        """The four-way choice shared by the distance getters: player or not, env cell or not."""
+        inside = (self.position.objcell_id & 0xFFFF) >= 0x100
+        if self is self.world.player:
+            return player_indoors if inside else player_outdoors
+        return indoors if inside else outdoors
+
+    def get_autonomy_blip_distance(self) -> float:
+        """How far a server position may be and still be glided to: 25 m (player) or 20 m indoors,
+        100 m outdoors.
+
+        Retail: CPhysicsObj::GetAutonomyBlipDistance @ 0x0050EB70 (acclient.c:315860)
+        """
+        return self._distance_for_place(25.0, 100.0, 20.0, 100.0)
+
+    def get_start_constraint_distance(self) -> float:
+        """5 m indoors, 10 m outdoors (player or not).
+
+        Retail: CPhysicsObj::GetStartConstraintDistance @ 0x0050EBC0 (acclient.c:315884)
+        """
+        return self._distance_for_place(5.0, 10.0, 5.0, 10.0)
+
+    def get_max_constraint_distance(self) -> float:
+        """20 m indoors, 50 m outdoors (player or not).
+
+        Retail: CPhysicsObj::GetMaxConstraintDistance @ 0x0050EC10 (acclient.c:315908)
+        """
+        return self._distance_for_place(20.0, 50.0, 20.0, 50.0)
 
 
 def _require_finite(what: str, v: Vector3) -> None:

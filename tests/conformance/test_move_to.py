@@ -676,11 +676,12 @@ class TestMoveToObject:
 
     def test_retunes_the_target_quantum(self, tracked: PhysicsObj) -> None:
         # Tracking and |v| = 2 > 0.1: time = dist / |v| = (5 - 0.4) / 2 = 2.3, more than 1 s off the
-        # target quantum 0 -> set_target_quantum (acclient.c:345694-345704).
+        # target quantum 0 -> set_target_quantum (acclient.c:345694-345704). The speed is that of
+        # CPhysicsObj::get_velocity, which is cached_velocity (acclient.c:318565), not m_velocityVector.
         m = self.start(tracked)
         self.report(m)
         teleport(tracked, 96.0, 101.0)
-        tracked.velocity = Vector3(0.0, 2.0, 0.0)
+        tracked.cached_velocity = Vector3(0.0, 2.0, 0.0)
         m.handle_move_to_position()
         assert tracked.target_manager.calls[-1] == ("set_target_quantum", pytest.approx(2.3))
 

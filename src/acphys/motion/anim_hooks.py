@@ -2,10 +2,13 @@
 
 A sequence queues a frame's hooks on the body as it crosses the frame
 (``CSequence::execute_hooks``, filtered by ``direction``); the body fires them
-in ``process_hooks``. The hooks that change physics state call the body
-(AnimDone, SetOmega, Ethereal, Scale, NoDraw); the ones about sound, light,
-particles, scripts and looks only record an event (``hook:<Kind>``) on the
-body, since acphys has no renderer or sound.
+in ``process_hooks``. The hooks retail routes to a body function call it:
+AnimDone, SetOmega, Ethereal, Scale, NoDraw, the look tweens (Transparent,
+Luminous, Diffuse and their per-part kinds), the particle emitters
+(Create, CreateBlocking, Destroy, Stop), DefaultScript and CallPES. The ones
+about sound, lights, textures, attacks, part swaps and a child's default
+script only record an event (``hook:<Kind>``) on the body, since acphys has
+no renderer, sound, weenie or child objects.
 
 Only data and ``Execute`` are ported; the DAT (un)packing is not.
 """
@@ -195,7 +198,7 @@ class NoDrawHook(AnimHook):
         obj.set_nodraw(self.no_draw, False)
 
 
-# -- the hooks acphys only records (sound, looks, particles, scripts, attacks) ----------------
+# -- sound, attacks and part swaps (recorded), looks, particles and scripts (routed to the body) --
 
 
 class SoundHook(AnimHook):
@@ -317,52 +320,73 @@ class _PartTween(_Tween):
 
 
 class TransparentHook(_Tween):
-    """Retail: TransparentHook::Execute @ 0x00526C30 (acclient.c:342341)"""
+    """Tween the body's translucency from ``start`` to ``end`` over ``time`` seconds."""
 
     __slots__ = ()
     hook_type = AnimHookType.TRANSPARENT
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: TransparentHook::Execute @ 0x00526C30 (acclient.c:342341)"""
+        obj.set_translucency2(self.start, self.end, self.time)
+
 
 class TransparentPartHook(_PartTween):
-    """Retail: TransparentPartHook::Execute @ 0x00526CC0 (acclient.c:342388)"""
+    """Tween part ``part``'s translucency."""
 
     __slots__ = ()
     hook_type = AnimHookType.TRANSPARENT_PART
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: TransparentPartHook::Execute @ 0x00526CC0 (acclient.c:342388)"""
+        obj.set_part_translucency(self.part, self.start, self.end, self.time)
+
 
 class LuminousHook(_Tween):
-    """Retail: LuminousHook::Execute @ 0x00526D60 (acclient.c:342421)"""
+    """Tween the part array's luminosity."""
 
     __slots__ = ()
     hook_type = AnimHookType.LUMINOUS
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: LuminousHook::Execute @ 0x00526D60 (acclient.c:342421)"""
+        obj.set_luminosity(self.start, self.end, self.time)
+
 
 class LuminousPartHook(_PartTween):
-    """Retail: LuminousPartHook::Execute @ 0x00526D30 (acclient.c:342415)"""
+    """Tween part ``part``'s luminosity."""
 
     __slots__ = ()
     hook_type = AnimHookType.LUMINOUS_PART
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: LuminousPartHook::Execute @ 0x00526D30 (acclient.c:342415)"""
+        obj.set_part_luminosity(self.part, self.start, self.end, self.time)
+
 
 class DiffuseHook(_Tween):
-    """Retail: DiffuseHook::Execute @ 0x00526E00 (acclient.c:342461)"""
+    """Tween the part array's diffusion."""
 
     __slots__ = ()
     hook_type = AnimHookType.DIFFUSE
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: DiffuseHook::Execute @ 0x00526E00 (acclient.c:342461)"""
+        obj.set_diffusion(self.start, self.end, self.time)
+
 
 class DiffusePartHook(_PartTween):
-    """Retail: DiffusePartHook::Execute @ 0x00526D80 (acclient.c:342427)"""
+    """Tween part ``part``'s diffusion."""
 
     __slots__ = ()
     hook_type = AnimHookType.DIFFUSE_PART
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: DiffusePartHook::Execute @ 0x00526D80 (acclient.c:342427)"""
+        obj.set_part_diffusion(self.part, self.start, self.end, self.time)
+
 
 class CreateParticleHook(AnimHook):
-    """Creates particle emitter ``emitter_info_id`` on ``part_index`` at ``offset``, tagged ``emitter_id``.
-
-    Retail: CreateParticleHook::Execute @ 0x00526EC0 (acclient.c:342512)
-    """
+    """Creates particle emitter ``emitter_info_id`` on ``part_index`` at ``offset``, tagged ``emitter_id``."""
 
     __slots__ = ("emitter_id", "emitter_info_id", "offset", "part_index")
     hook_type = AnimHookType.CREATE_PARTICLE
@@ -380,16 +404,26 @@ class CreateParticleHook(AnimHook):
         self.emitter_info_id, self.part_index, self.emitter_id = emitter_info_id, part_index, emitter_id
         self.offset = offset.copy() if offset is not None else Frame()
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: CreateParticleHook::Execute @ 0x00526EC0 (acclient.c:342512)"""
+        obj.create_particle_emitter(self.emitter_info_id, self.part_index, self.offset, self.emitter_id)
+
 
 class CreateBlockingParticleHook(CreateParticleHook):
-    """Retail: CreateBlockingParticleHook::Execute @ 0x00526EF0 (acclient.c:342524)"""
+    """As CreateParticleHook, unless an emitter tagged ``emitter_id`` is already playing."""
 
     __slots__ = ()
     hook_type = AnimHookType.CREATE_BLOCKING_PARTICLE
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: CreateBlockingParticleHook::Execute @ 0x00526EF0 (acclient.c:342524)"""
+        obj.create_blocking_particle_emitter(
+            self.emitter_info_id, self.part_index, self.offset, self.emitter_id
+        )
+
 
 class DestroyParticleHook(AnimHook):
-    """Retail: DestroyParticleHook::Execute @ 0x00526F10 (acclient.c:342535)"""
+    """Removes the emitter tagged ``emitter_id`` and its particles at once."""
 
     __slots__ = ("emitter_id",)
     hook_type = AnimHookType.DESTROY_PARTICLE
@@ -398,23 +432,39 @@ class DestroyParticleHook(AnimHook):
         super().__init__(direction=direction)
         self.emitter_id = emitter_id
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: DestroyParticleHook::Execute @ 0x00526F10 (acclient.c:342535)"""
+        obj.destroy_particle_emitter(self.emitter_id)
+
 
 class StopParticleHook(DestroyParticleHook):
-    """Retail: StopParticleHook::Execute @ 0x00526F20 (acclient.c:342541)"""
+    """Stops the emitter tagged ``emitter_id`` emitting; its particles live out their lifespans."""
 
     __slots__ = ()
     hook_type = AnimHookType.STOP_PARTICLE
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: StopParticleHook::Execute @ 0x00526F20 (acclient.c:342541)"""
+        obj.stop_particle_emitter(self.emitter_id)
+
 
 class DefaultScriptHook(AnimHook):
-    """Retail: DefaultScriptHook::Execute @ 0x00526C10 (acclient.c:342329)"""
+    """Plays the body's default script."""
 
     __slots__ = ()
     hook_type = AnimHookType.DEFAULT_SCRIPT
 
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: DefaultScriptHook::Execute @ 0x00526C10 (acclient.c:342329)"""
+        obj.play_default_script()
+
 
 class DefaultScriptPartHook(AnimHook):
-    """Retail: DefaultScriptPartHook::Execute @ 0x00526C00 (acclient.c:342323)"""
+    """Plays the default script of the child held at ``part_index``; acphys bodies have no
+    children, so the event is recorded.
+
+    Retail: DefaultScriptPartHook::Execute @ 0x00526C00 (acclient.c:342323)
+    """
 
     __slots__ = ("part_index",)
     hook_type = AnimHookType.DEFAULT_SCRIPT_PART
@@ -425,10 +475,7 @@ class DefaultScriptPartHook(AnimHook):
 
 
 class CallPESHook(AnimHook):
-    """Runs physics script ``pes`` after ``pause`` seconds.
-
-    Retail: CallPESHook::Execute @ 0x00526E20 (acclient.c:342467)
-    """
+    """Runs physics script ``pes`` after a random pause of up to ``pause`` seconds."""
 
     __slots__ = ("pause", "pes")
     hook_type = AnimHookType.CALL_PES
@@ -436,6 +483,10 @@ class CallPESHook(AnimHook):
     def __init__(self, pes: int = 0, pause: float = 0.0, *, direction: int = AnimHookDir.BOTH) -> None:
         super().__init__(direction=direction)
         self.pes, self.pause = pes, pause
+
+    def execute(self, obj: PhysicsObj) -> None:
+        """Retail: CallPESHook::Execute @ 0x00526E20 (acclient.c:342467)"""
+        obj.call_pes(self.pes, self.pause)
 
 
 class TextureVelocityHook(AnimHook):

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON
 from acphys.flags import TransientState
+from acphys.managers.target import TargetInfo
 from acphys.math.position import Position
 from acphys.math.vector import Vector3, compass_heading
 from acphys.motion.commands import RUN_FORWARD, TURN_LEFT, TURN_RIGHT, WALK_BACKWARDS, WALK_FORWARD
@@ -246,37 +247,6 @@ class MovementNode:
 
     def __repr__(self) -> str:
         return f"MovementNode({self.type.name}, {self.heading})"
-
-
-class TargetInfo:
-    """What the target manager reports about a tracked object (the fields the move-to reads).
-
-    Retail ``TargetInfo`` (acclient.h:31591).
-    """
-
-    __slots__ = ("context_id", "interpolated_position", "object_id", "quantum", "radius", "status",
-                 "target_position", "velocity")
-
-    def __init__(
-        self,
-        object_id: int,
-        status: int,
-        target_position: Position | None = None,
-        interpolated_position: Position | None = None,
-        *,
-        context_id: int = 0,
-        radius: float = 0.0,
-        quantum: float = 0.0,
-        velocity: Vector3 | None = None,
-    ) -> None:
-        self.context_id = context_id
-        self.object_id = object_id
-        self.radius = radius
-        self.quantum = quantum
-        self.target_position = target_position or Position()
-        self.interpolated_position = interpolated_position or Position()
-        self.velocity = velocity or Vector3()
-        self.status = status
 
 
 def _params_for_motion(hold_key: HoldKey, speed: float = 1.0) -> MovementParameters:
@@ -806,7 +776,7 @@ class MoveToManager:
                 self.cancel_move_to(MovementError.YOU_CHARGED_TOO_FAR)
 
         if self.top_level_object_id and self.movement_type != MovementType.INVALID:
-            speed = obj.velocity.length()
+            speed = obj.get_velocity().length()  # cached_velocity (CPhysicsObj::get_velocity)
             if speed > TARGET_QUANTUM_MIN_SPEED:
                 time_to_get_there = distance / speed
                 if abs(time_to_get_there - obj.get_target_quantum()) > 1.0:

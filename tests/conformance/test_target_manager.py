@@ -347,6 +347,7 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
     voyeur = next(iter(target.target_manager.voyeur_table))
     sent = [voyeur.last_sent_position.frame.origin.x]
     stamps = [world.physics_time]
+    quanta = [voyeur.quantum]
     moveto = walker.movement_manager.moveto_manager
     for _ in range(600):
         run(world, [walker, target], TICK)
@@ -354,6 +355,7 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
         if x != sent[-1]:
             sent.append(x)
             stamps.append(world.physics_time)
+            quanta.append(voyeur.quantum)
             # Each report re-aims the walk at the reported position (acclient.c:346072-346073).
             assert moveto.sought_position.frame.origin.x == x
         if not moveto.is_moving_to():
@@ -363,9 +365,14 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
     # physics time, acclient.c:328468) once it is more than 0.5 m from the last report (acclient.c:328175):
     # every pass while it walks. Fifteen 1/30-s ticks sum to 0.49999999999999994 s in doubles, short of the
     # gate, so the passes come every 16 ticks (0.533 s), 0.533 × 3.12 = 1.664 m apart.
+    # The walker retunes the target quantum once it walks (HandleMoveToPosition, acclient.c:345694-345704:
+    # time = distance / |cached_velocity| = 4.296 / 3.12, more than 1 s off the initial 0), which shifts the
+    # phase of the target's passes once; from the third report on they are steady.
+    assert quanta[0] == 0.0
+    assert quanta[1] == pytest.approx(4.296 / 3.12, abs=1e-6)
     assert len(sent) >= 6
-    assert [round(b - a, 3) for a, b in itertools.pairwise(stamps[1:])] == [0.533] * (len(sent) - 2)
-    assert [round(b - a, 3) for a, b in itertools.pairwise(sent[1:-1])] == [1.664] * (len(sent) - 3)
+    assert [round(b - a, 3) for a, b in itertools.pairwise(stamps[2:])] == [0.533] * (len(sent) - 3)
+    assert [round(b - a, 3) for a, b in itertools.pairwise(sent[2:-1])] == [1.664] * (len(sent) - 4)
     gap = cylinder_distance(walker.get_radius(), walker.get_height(), walker.position,
                             HUMAN_RADIUS, target.get_height(), target.position)
     assert gap <= MovementParameters().distance_to_object

@@ -49,11 +49,15 @@ def human_setup() -> Setup:
     """The retail human (setup 0x02000001): two spheres of radius 0.48 at z 0.475 and 1.35.
 
     Its height, radius, step heights and sorting sphere are DAT data acphys
-    does not ship: the sorting sphere here is the smallest one around the two
-    collision spheres, and scenarios set the rest where they matter.
+    does not ship. Stand-ins derived from the two collision spheres: radius
+    0.48 (theirs), height 1.83 (the top of the upper one), and the smallest
+    sorting sphere around them. The step heights stay 0: a scenario that walks
+    humans over objects or stairs gives its own setup explicit step heights.
     """
     spheres = [Sphere(Vector3(0.0, 0.0, 0.475), 0.48), Sphere(Vector3(0.0, 0.0, 1.35), 0.48)]
-    return Setup(name="human", spheres=spheres, sorting_sphere=bounding_sphere(spheres))
+    return Setup(
+        name="human", spheres=spheres, height=1.83, radius=0.48, sorting_sphere=bounding_sphere(spheres)
+    )
 
 
 def bounding_sphere(spheres: list[Sphere]) -> Sphere:

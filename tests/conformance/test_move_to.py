@@ -675,7 +675,8 @@ class TestMoveToObject:
         assert tracked.position_manager.calls[-1] == ("stick_to", self.TARGET, 0.4, 1.5)
 
     def test_retunes_the_target_quantum(self, tracked: PhysicsObj) -> None:
-        # Tracking and |v| = 2 > 0.1: time = dist / |v| = (5 - 0.4) / 2 = 2.3, more than 1 s off the
+        # Tracking and |v| = 2 > 0.1: time = dist / |v| with dist the cylinder distance, 5 m less the
+        # target's 0.4 and the body's 0.48 radius: (5 - 0.4 - 0.48) / 2 = 2.06, more than 1 s off the
         # target quantum 0 -> set_target_quantum (acclient.c:345694-345704). The speed is that of
         # CPhysicsObj::get_velocity, which is cached_velocity (acclient.c:318565), not m_velocityVector.
         m = self.start(tracked)
@@ -683,7 +684,7 @@ class TestMoveToObject:
         teleport(tracked, 96.0, 101.0)
         tracked.cached_velocity = Vector3(0.0, 2.0, 0.0)
         m.handle_move_to_position()
-        assert tracked.target_manager.calls[-1] == ("set_target_quantum", pytest.approx(2.3))
+        assert tracked.target_manager.calls[-1] == ("set_target_quantum", pytest.approx(2.06))
 
     def test_moving_to_oneself_ends_at_once(self, tracked: PhysicsObj) -> None:
         # top_level_id == the body's id: no set_target; CleanUp (which clears the target, since top_level and

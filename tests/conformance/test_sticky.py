@@ -29,8 +29,8 @@ def pair(world):
 
 
 def _gap(pet, owner) -> float:
-    """Position::cylinder_distance_no_z with both radii 0 here: the 3-D centre distance."""
-    return pet.position.get_offset(owner.position).length()
+    """Position::cylinder_distance_no_z (acclient.c:467268): the 3-D centre distance less both radii."""
+    return pet.position.get_offset(owner.position).length() - pet.get_radius() - owner.get_radius()
 
 
 class TestStick:

@@ -366,10 +366,11 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
     # every pass while it walks. Fifteen 1/30-s ticks sum to 0.49999999999999994 s in doubles, short of the
     # gate, so the passes come every 16 ticks (0.533 s), 0.533 × 3.12 = 1.664 m apart.
     # The walker retunes the target quantum once it walks (HandleMoveToPosition, acclient.c:345694-345704:
-    # time = distance / |cached_velocity| = 4.296 / 3.12, more than 1 s off the initial 0), which shifts the
+    # time = distance / |cached_velocity| = (4.776 - 0.48 - 0.48) / 3.12: the cylinder distance less both
+    # 0.48-m radii, more than 1 s off the initial 0), which shifts the
     # phase of the target's passes once; from the third report on they are steady.
     assert quanta[0] == 0.0
-    assert quanta[1] == pytest.approx(4.296 / 3.12, abs=1e-6)
+    assert quanta[1] == pytest.approx((4.776 - 0.48 - 0.48) / 3.12, abs=1e-6)
     assert len(sent) >= 6
     assert [round(b - a, 3) for a, b in itertools.pairwise(stamps[2:])] == [0.533] * (len(sent) - 3)
     assert [round(b - a, 3) for a, b in itertools.pairwise(sent[2:-1])] == [1.664] * (len(sent) - 4)

@@ -31,6 +31,7 @@ from acphys.physics_obj import PhysicsObj
 from acphys.scenario import values as read
 from acphys.scenario.events import read_event, speed_limited
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
+from acphys.scenario.scripts import read_scripts
 from acphys.scenario.values import Ctx, ScenarioError
 from acphys.scenario.world_data import (
     SetupLookup,
@@ -256,7 +257,7 @@ def _read_body(
 
 # -- entry points ---------------------------------------------------------------------------
 
-TOP_KEYS = ("scenario", "landblock", "motion_table", "setup", "building", "object", "body", "event")
+TOP_KEYS = ("scenario", "landblock", "motion_table", "script", "setup", "building", "object", "body", "event")
 
 
 def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "scenario") -> Simulation:
@@ -269,6 +270,7 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
     read.table(ctx, "", document, TOP_KEYS)
     header = _read_header(ctx, document.get("scenario", {}), default_name)
     tables = read_motion_tables(ctx, document.get("motion_table", {}))
+    scripts = read_scripts(ctx, document.get("script", {}))
     setups = _read_setups(ctx, document.get("setup", {}), tables)
 
     world = World()
@@ -295,7 +297,7 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
 
     raw_events = read.list_of_tables(ctx, "event", document.get("event", []))
     events = [
-        read_event(ctx, f"event[{index}]", raw, by_name, header.duration)
+        read_event(ctx, f"event[{index}]", raw, by_name, header.duration, scripts)
         for index, raw in enumerate(raw_events)
     ]
     return Simulation(

@@ -35,6 +35,12 @@ ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "jump": ((), ("extent",)),
     "move_to": (("origin",), ("landblock", "distance", "min_distance", "speed", "hold_run", "fail_distance")),
     "turn_to": (("heading",), ("speed",)),
+    "interpolate_to": (("origin",), ("landblock", "heading", "keep_heading")),
+    "stick_to": (("target",), ()),
+    "unstick": ((), ()),
+    "constrain_to": (("origin", "start", "max"), ("landblock",)),
+    "unconstrain": ((), ()),
+    "play_script": (("script",), ()),
 }
 EVENT_ACTIONS = tuple(ACTION_KEYS)
 #: Actions that need the body to have a motion table (and so a movement manager).
@@ -86,7 +92,8 @@ def _jump_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
     return jump
 
 
-def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Apply:
+def _position(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Position:
+    """``origin`` (landblock-local) in ``landblock`` (default: the body's), facing ``heading``."""
     origin = read.vector(ctx, f"{key}.origin", table["origin"])
     if not (0.0 <= origin.x < BLOCK_LENGTH and 0.0 <= origin.y < BLOCK_LENGTH):
         raise ctx.fail(
@@ -95,8 +102,13 @@ def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) 
     if "landblock" in table:
         landblock = read.landblock(ctx, f"{key}.landblock", table["landblock"])
     else:
-        landblock = landblock_of(body.position.objcell_id) >> 16
-    target = Position(outdoor_cell_id(landblock, origin), Frame(origin))
+        landblock = landblock_of(body.position.objcell_id)
+    heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+    return Position(outdoor_cell_id(landblock, origin), Frame.from_heading(origin, heading))
+
+
+def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Apply:
+    target = _position(ctx, key, table, body)
     params = _params(ctx, key, table)
     if "distance" in table:
         params.distance_to_object = read.ranged(ctx, f"{key}.distance", table["distance"], 0.0, 1000.0)
@@ -118,7 +130,79 @@ def _turn_to_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
     return turn
 
 
-def read_event(ctx: Ctx, key: str, raw: Any, bodies: dict[str, PhysicsObj], duration: float) -> Event:
+def _manager_apply(
+    ctx: Ctx,
+    key: str,
+    action: str,
+    table: dict[str, Any],
+    body: PhysicsObj,
+    bodies: dict[str, PhysicsObj],
+    scripts: dict[str, int],
+) -> Apply:
+    """The position-manager and script actions, each noted in the body's events."""
+    if action == "interpolate_to":
+        target = _position(ctx, key, table, body)
+        keep_heading = read.boolean(ctx, f"{key}.keep_heading", table.get("keep_heading", False))
+
+        def interpolate(obj: PhysicsObj) -> None:
+            obj.interpolate_to(target, keep_heading)
+            obj.record_event("interpolate_to")
+
+        return interpolate
+    if action == "stick_to":
+        name = read.string(ctx, f"{key}.target", table["target"])
+        if name not in bodies or bodies[name] is body:
+            raise ctx.fail(f"{key}.target", f"no other body named {name!r} to stick to")
+        other = bodies[name]
+
+        def stick(obj: PhysicsObj) -> None:
+            obj.stick_to_object(other.id)
+            obj.record_event(f"stick_to:{name}")
+
+        return stick
+    if action == "unstick":
+
+        def unstick(obj: PhysicsObj) -> None:
+            obj.unstick_from_object()
+            obj.record_event("unstick")
+
+        return unstick
+    if action == "constrain_to":
+        anchor = _position(ctx, key, table, body)
+        start = read.ranged(ctx, f"{key}.start", table["start"], 0.0, 1e4)
+        limit = read.ranged(ctx, f"{key}.max", table["max"], 0.0, 1e4)
+        if not limit > start:
+            raise ctx.fail(f"{key}.max", f"must be more than start ({start:g}), got {limit:g}")
+
+        def constrain(obj: PhysicsObj) -> None:
+            obj.constrain_to(anchor, start, limit)
+            obj.record_event("constrain_to")
+
+        return constrain
+    if action == "unconstrain":
+
+        def unconstrain(obj: PhysicsObj) -> None:
+            obj.get_position_manager().unconstrain()
+            obj.record_event("unconstrain")
+
+        return unconstrain
+    name = read.string(ctx, f"{key}.script", table["script"])
+    if name not in scripts:
+        known = ", ".join(scripts) or "none: declare [script.NAME]"
+        raise ctx.fail(f"{key}.script", f"no script named {name!r} (known: {known})")
+    script_id = scripts[name]
+
+    def play(obj: PhysicsObj) -> None:
+        obj.record_event(
+            f"play_script:{name}" if obj.play_script(script_id) else f"play_script:{name}:failed"
+        )
+
+    return play
+
+
+def read_event(
+    ctx: Ctx, key: str, raw: Any, bodies: dict[str, PhysicsObj], duration: float, scripts: dict[str, int]
+) -> Event:
     """One ``[[event]]``, checked against the scenario's bodies and duration."""
     table = read.table(
         ctx, key, raw, ("at", "body", "action", *{k for r, o in ACTION_KEYS.values() for k in r + o})
@@ -168,6 +252,8 @@ def read_event(ctx: Ctx, key: str, raw: Any, bodies: dict[str, PhysicsObj], dura
         apply = _jump_apply(ctx, key, table)
     elif action == "move_to":
         apply = _move_to_apply(ctx, key, table, body)
-    else:
+    elif action == "turn_to":
         apply = _turn_to_apply(ctx, key, table)
+    else:
+        apply = _manager_apply(ctx, key, action, table, body, bodies, scripts)
     return Event(at=at, body=name, action=action, apply=apply, source=key)

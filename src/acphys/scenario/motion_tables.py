@@ -72,19 +72,20 @@ _HOOK_ARGS: dict[str, tuple[Callable[..., anim_hooks.AnimHook], tuple[str, ...]]
 }
 
 
-def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hooks.AnimHook]:
-    entry = read.table(
-        ctx, key, raw, ("frame", "kind", "direction", "axis", "ethereal", "end", "time", "no_draw")
-    )
-    for required in ("frame", "kind"):
-        if required not in entry:
-            raise ctx.fail(f"{key}.{required}", "missing (a hook needs frame and kind)")
-    frame = _count(ctx, f"{key}.frame", entry["frame"], 0, num_frames - 1)
+HOOK_KEYS = ("kind", "direction", "axis", "ethereal", "end", "time", "no_draw")
+
+
+def read_hook(ctx: Ctx, key: str, entry: dict[str, Any], where: str) -> anim_hooks.AnimHook:
+    """One hook from ``entry`` (its ``kind``, its arguments and ``direction``); ``where`` is the
+    key that places it (``frame`` in an animation, ``at`` in a script), already read by the caller.
+    """
+    if "kind" not in entry:
+        raise ctx.fail(f"{key}.kind", f"missing (a hook needs {where} and kind)")
     kind = read.string(ctx, f"{key}.kind", entry["kind"])
     if kind not in _HOOK_ARGS:
         raise ctx.fail(f"{key}.kind", f"unknown hook {kind!r} (known: {', '.join(_HOOK_ARGS)})")
     factory, arg_names = _HOOK_ARGS[kind]
-    extra = [name for name in entry if name not in ("frame", "kind", "direction", *arg_names)]
+    extra = [name for name in entry if name not in (where, "kind", "direction", *arg_names)]
     if extra:
         raise ctx.fail(f"{key}.{extra[0]}", f"not used by a {kind} hook")
     args: list[Any] = []
@@ -100,7 +101,15 @@ def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hook
     direction = read.string(ctx, f"{key}.direction", entry.get("direction", "both"))
     if direction not in _DIRECTIONS:
         raise ctx.fail(f"{key}.direction", f"expected one of {', '.join(_DIRECTIONS)}, got {direction!r}")
-    return frame, factory(*args, direction=_DIRECTIONS[direction])
+    return factory(*args, direction=_DIRECTIONS[direction])
+
+
+def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hooks.AnimHook]:
+    entry = read.table(ctx, key, raw, ("frame", *HOOK_KEYS))
+    if "frame" not in entry:
+        raise ctx.fail(f"{key}.frame", "missing (a hook needs frame and kind)")
+    frame = _count(ctx, f"{key}.frame", entry["frame"], 0, num_frames - 1)
+    return frame, read_hook(ctx, key, entry, "frame")
 
 
 def _float32_vector(v: Vector3) -> Vector3:

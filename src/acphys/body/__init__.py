@@ -1,0 +1,1 @@
+"""The parts of :class:`acphys.physics_obj.PhysicsObj`, one module per concern."""

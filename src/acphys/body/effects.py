@@ -6,12 +6,8 @@ import random
 
 from acphys.attachments import AnimHook, ParticleManager
 from acphys.constants import EPSILON
-from acphys.flags import PhysicsState, TransientState
 from acphys.hooks import FPHook, HookType
 from acphys.math.frame import Frame
-
-PS = PhysicsState
-TS = TransientState
 
 
 class Effects:

@@ -6,15 +6,11 @@ from typing import TYPE_CHECKING
 
 from acphys.attachments import PositionManager, TargetManager
 from acphys.constants import float32
-from acphys.flags import PhysicsState, TransientState
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 
 if TYPE_CHECKING:
     from acphys.managers.target import TargetInfo
-
-PS = PhysicsState
-TS = TransientState
 
 
 class ManagerRequests:

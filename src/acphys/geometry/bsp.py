@@ -72,8 +72,14 @@ class BSPPolygon(Protocol):
 
     def adjust_sphere_to_poly(self, check_pos: Sphere, curr_pos: Vector3, movement: Vector3) -> float: ...
 
-    def adjust_to_placement_poly(self, struck_sphere: Sphere, other_sphere: Sphere, radius: float,
-                                 center_solid: bool, solid_check: bool) -> None: ...
+    def adjust_to_placement_poly(
+        self,
+        struck_sphere: Sphere,
+        other_sphere: Sphere,
+        radius: float,
+        center_solid: bool,
+        solid_check: bool,
+    ) -> None: ...
 
 
 class SolidPolyHit:

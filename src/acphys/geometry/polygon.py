@@ -122,8 +122,9 @@ class Polygon:
         if not rad >= abs(dist):
             return None
         n = self.plane.N
-        contact_pt.set(Vector3(sphere.center.x - dist * n.x, sphere.center.y - dist * n.y,
-                               sphere.center.z - dist * n.z))
+        contact_pt.set(
+            Vector3(sphere.center.x - dist * n.x, sphere.center.y - dist * n.y, sphere.center.z - dist * n.z)
+        )
         return rad * rad - dist * dist
 
     def polygon_hits_sphere(self, sphere: Sphere, contact_pt: Vector3) -> bool:
@@ -259,8 +260,14 @@ class Polygon:
         reach = -check_pos.radius if dist <= 0.0 else check_pos.radius
         return (reach - dist) / along
 
-    def adjust_to_placement_poly(self, struck_sphere: Sphere, other_sphere: Sphere, radius: float,
-                                 center_solid: bool, solid_check: bool) -> None:
+    def adjust_to_placement_poly(
+        self,
+        struck_sphere: Sphere,
+        other_sphere: Sphere,
+        radius: float,
+        center_solid: bool,
+        solid_check: bool,
+    ) -> None:
         """Push both spheres along N so ``struck_sphere`` ends ``radius`` from the plane.
 
         With ``solid_check`` the target side is ``+radius``, negated once for ``center_solid``

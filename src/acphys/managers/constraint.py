@@ -35,8 +35,14 @@ class ConstraintManager:
     Retail: ConstraintManager::Create @ 0x00556110 (acclient.c:389432)
     """
 
-    __slots__ = ("constraint_distance_max", "constraint_distance_start", "constraint_pos",
-                 "constraint_pos_offset", "is_constrained", "physics_obj")
+    __slots__ = (
+        "constraint_distance_max",
+        "constraint_distance_start",
+        "constraint_pos",
+        "constraint_pos_offset",
+        "is_constrained",
+        "physics_obj",
+    )
 
     def __init__(self, physics_obj: PhysicsObj) -> None:
         self.physics_obj = physics_obj

@@ -76,8 +76,10 @@ class DetectionCylsphere:
         self.detection_type = detection_type
 
     def __repr__(self) -> str:
-        return (f"DetectionCylsphere(context={self.context_id}, radius={self.radius}, "
-                f"object=0x{self.info.object_id:08X}, detected={self.object_detected})")
+        return (
+            f"DetectionCylsphere(context={self.context_id}, radius={self.radius}, "
+            f"object=0x{self.info.object_id:08X}, detected={self.object_detected})"
+        )
 
 
 #: ``on_report(context_id, info)``: what the body's owner hears of each Entered / Left report.
@@ -91,8 +93,14 @@ class DetectionManager:
     lacks; acphys visits cylinders in creation order.
     """
 
-    __slots__ = ("detection_table", "last_update_time", "on_report", "pending_deletions", "physobj",
-                 "reports")
+    __slots__ = (
+        "detection_table",
+        "last_update_time",
+        "on_report",
+        "pending_deletions",
+        "physobj",
+        "reports",
+    )
 
     def __init__(self, physobj: PhysicsObj) -> None:
         self.physobj = physobj

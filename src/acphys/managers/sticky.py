@@ -49,8 +49,14 @@ class StickyManager:
     Retail: StickyManager::Create @ 0x00555800 (acclient.c:388727)
     """
 
-    __slots__ = ("initialized", "physics_obj", "sticky_timeout_time", "target_id", "target_position",
-                 "target_radius")
+    __slots__ = (
+        "initialized",
+        "physics_obj",
+        "sticky_timeout_time",
+        "target_id",
+        "target_position",
+        "target_radius",
+    )
 
     def __init__(self, physics_obj: PhysicsObj) -> None:
         self.physics_obj = physics_obj

@@ -116,8 +116,18 @@ class TargetInfo:
     Retail: TargetInfo::TargetInfo @ 0x0051A420 (acclient.c:328026)
     """
 
-    __slots__ = ("context_id", "interpolated_heading", "interpolated_position", "last_update_time",
-                 "object_id", "quantum", "radius", "status", "target_position", "velocity")
+    __slots__ = (
+        "context_id",
+        "interpolated_heading",
+        "interpolated_position",
+        "last_update_time",
+        "object_id",
+        "quantum",
+        "radius",
+        "status",
+        "target_position",
+        "velocity",
+    )
 
     def __init__(
         self,
@@ -163,8 +173,10 @@ class TargetInfo:
         )
 
     def __repr__(self) -> str:
-        return (f"TargetInfo(0x{self.object_id:08X}, status={self.status}, quantum={self.quantum}, "
-                f"radius={self.radius})")
+        return (
+            f"TargetInfo(0x{self.object_id:08X}, status={self.status}, quantum={self.quantum}, "
+            f"radius={self.radius})"
+        )
 
 
 class TargettedVoyeurInfo:
@@ -217,7 +229,11 @@ class TargetManager:
             obj.handle_update_target(TargetInfo(0, TargetStatus.TIMED_OUT, context_id=context_id))
             return
         self.target_info = TargetInfo(
-            object_id, TargetStatus.UNDEF, context_id=context_id, radius=radius, quantum=quantum,
+            object_id,
+            TargetStatus.UNDEF,
+            context_id=context_id,
+            radius=radius,
+            quantum=quantum,
             last_update_time=obj.world.cur_time,
         )
         target = obj.world.get_object(object_id)
@@ -371,8 +387,13 @@ class TargetManager:
         voyeur.last_sent_position = p.copy()
         obj = self.physobj
         info = TargetInfo(
-            obj.id, status, obj.position.copy(), p.copy(),
-            radius=voyeur.radius, quantum=voyeur.quantum, velocity=obj.get_velocity(),
+            obj.id,
+            status,
+            obj.position.copy(),
+            p.copy(),
+            radius=voyeur.radius,
+            quantum=voyeur.quantum,
+            velocity=obj.get_velocity(),
         )
         tracker = obj.world.get_object(voyeur.object_id)
         if tracker is not None:

@@ -484,7 +484,11 @@ class MoveToManager:
         self.begin_next_node()
 
     def move_to_object(
-        self, object_id: int, top_level_id: int, object_radius: float, object_height: float,
+        self,
+        object_id: int,
+        top_level_id: int,
+        object_radius: float,
+        object_height: float,
         params: MovementParameters,
     ) -> None:
         """Stop, record the sought object, and ask the target manager to track its top-level

@@ -47,8 +47,16 @@ class ObjectInfo:
     from the moving object.
     """
 
-    __slots__ = ("ethereal", "object", "scale", "state", "step_down", "step_down_height", "step_up_height",
-                 "target_id")
+    __slots__ = (
+        "ethereal",
+        "object",
+        "scale",
+        "state",
+        "step_down",
+        "step_down_height",
+        "step_up_height",
+        "target_id",
+    )
 
     def __init__(
         self,
@@ -186,8 +194,11 @@ class ObjectInfo:
             collisions.collided_with_environment = True
             return TransitionState.ADJUSTED
         dist = (
-            center.y * normal.y + (center.z - check_pos.radius) * normal.z + center.x * normal.x
-            + contact_plane.d + water_depth
+            center.y * normal.y
+            + (center.z - check_pos.radius) * normal.z
+            + center.x * normal.x
+            + contact_plane.d
+            + water_depth
         )
         contact = path.step_down or not state & OI.ON_WALKABLE or self.is_valid_walkable(normal)
         if dist >= -EPSILON:

@@ -220,4 +220,3 @@ def find_placement_position(transition: Transition) -> bool:
         path.insert_type = path.backup
         path.walkable = None
     return validate_placement(transition, TS.OK, True) == TS.OK
-

@@ -173,7 +173,10 @@ def _plane_chain_tree(walls: Sequence[tuple[Plane, list[Polygon]]], inside_posit
         below = below + list(polys)
         pos, neg = (node, leaf) if inside_positive else (leaf, node)
         node = BSPNode(
-            plane, pos_node=pos, neg_node=neg, sphere=_bounding_sphere(below) if below else sphere,
+            plane,
+            pos_node=pos,
+            neg_node=neg,
+            sphere=_bounding_sphere(below) if below else sphere,
             type=NODE_TYPE_BOTH_CHILDREN,
         )
     leaves: list[BSPLeaf] = []
@@ -213,7 +216,7 @@ def _check_rooms(rooms: Sequence[RoomSpec]) -> None:
         if not (lo.x < hi.x and lo.y < hi.y and lo.z < hi.z):
             raise ValueError(f"room {format_cell_id(room.cell_id)}: min {lo!r} must be below max {hi!r}")
     for i, a in enumerate(rooms):
-        for b in rooms[i + 1:]:
+        for b in rooms[i + 1 :]:
             if all(
                 _get(a.box_min, k) < _get(b.box_max, k) - _TOL
                 and _get(b.box_min, k) < _get(a.box_max, k) - _TOL

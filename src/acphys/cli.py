@@ -20,7 +20,7 @@ from rich.table import Table
 
 from acphys import __version__
 from acphys.bench import run_suite
-from acphys.flags import flag_names
+from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
 from acphys.scenario import ScenarioError, builtin_scenarios, load_scenario
@@ -140,7 +140,7 @@ def _summary(sim: Simulation) -> Table:
             _triple(body.position.frame.origin),
             f"{body.position.frame.get_heading():.1f}°",
             _triple(body.velocity),
-            " ".join(flag_names(body.transient_state)) or "-",
+            " ".join(flag_names(body.transient_state, TransientState)) or "-",
         )
     return table
 

@@ -61,7 +61,7 @@ def step_record(body: PhysicsObj, quantum: float) -> dict[str, Any]:
         "velocity": list(body.velocity),
         "cached_velocity": list(body.cached_velocity),
         "omega": list(body.omega),
-        "transient": flag_names(body.transient_state),
+        "transient": flag_names(body.transient_state, TransientState),
         "contact_normal": list(body.contact_plane.N) if in_contact else None,
         "events": list(body.step_events),
     }

@@ -9,9 +9,9 @@ canim/CPhysicsScriptTable.c (GetScript 336551 / 336930), CPhysicsObj::play_scrip
 from __future__ import annotations
 
 import pytest
-from tests.support import place
 
 from acphys.flags import PhysicsState as PS
+from acphys.flags import TransientState
 from acphys.hooks import HookType
 from acphys.managers.scripts import (
     PhysicsScript,
@@ -26,6 +26,7 @@ from acphys.managers.scripts import (
 from acphys.motion.anim_hooks import AnimHook, CallPESHook, DefaultScriptHook
 from acphys.physics_obj import PhysicsObj
 from acphys.world.world import World
+from support import place
 
 SCRIPT_A = 0x33000101
 SCRIPT_B = 0x33000102
@@ -147,7 +148,7 @@ class TestScriptManager:
     def test_the_tick_fires_scripts_even_for_an_inactive_body(self, world, log):
         # UpdateObjectInternal calls ScriptManager::UpdateScripts outside the ACTIVE branch.
         body = place(world, state=PS(0))
-        body.transient_state = body.transient_state & ~body.transient_state.ACTIVE
+        body.transient_state &= ~TransientState.ACTIVE
         body.play_script(SCRIPT_B)
         body.update_object_internal(0.1)
         assert log == [("b0", 0.0)]

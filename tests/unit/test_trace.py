@@ -407,3 +407,17 @@ def test_a_negative_tolerance_is_a_value_error(default_trace: Path, tol: float) 
     with pytest.raises(ValueError, match="tolerance") as caught:
         diff_traces(default_trace, default_trace, tol=tol)
     assert not isinstance(caught.value, TraceError)
+
+
+def test_state_bits_combine_as_plain_ints_and_keep_their_names() -> None:
+    # The flag classes use int's operators (fast; acphys.flags._use_int_operators): results are plain
+    # ints of the right value, and flag_names reads the names through the class.
+    from acphys.flags import PhysicsState, TransientState, flag_names
+
+    combined = TransientState.CONTACT | TransientState.ACTIVE
+    assert type(combined) is int and combined == 0x81
+    assert (combined & ~TransientState.ACTIVE) == TransientState.CONTACT
+    assert flag_names(combined, TransientState) == ["contact", "active"]
+    assert flag_names(PhysicsState.GRAVITY) == ["gravity"]
+    with pytest.raises(TypeError, match="needs the flag class"):
+        flag_names(combined)

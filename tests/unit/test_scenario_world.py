@@ -408,3 +408,20 @@ def test_the_hills_have_a_lake_and_the_seam_walker_crosses() -> None:
     assert seam.body("walker").position.objcell_id >> 16 == 0xA9B4
     seam.run()
     assert seam.body("walker").position.objcell_id >> 16 == 0xAAB4
+
+
+def test_on_ground_keeps_the_contact_plane_placement_found_on_a_slope() -> None:
+    # enter_world places the body through SetPosition (acclient.c:323440), which commits the terrain
+    # triangle under it as the contact plane; on_ground only fills in a level plane where there is none.
+    heights = [[x * 2 for _y in range(9)] for x in range(9)]
+    flat = [h for column in heights for h in column]
+    text = (
+        '[[landblock]]\nid = "0xA9B4"\n'
+        f"heights = {flat}\n"
+        f"height_table = {[float(i) for i in range(256)]}\n"
+        '[[body]]\nname = "a"\nlandblock = "0xA9B4"\norigin = [30.0, 30.0, 2.5]\non_ground = true\n'
+    )
+    body = acphys.parse_scenario(text).body("a")
+    normal = body.contact_plane.N
+    # The terrain rises 2 m per 24 m along x: the normal leans back against +x.
+    assert normal.x < 0.0 and normal.z == pytest.approx(24.0 / (24.0**2 + 2.0**2) ** 0.5, abs=1e-6)

@@ -241,7 +241,9 @@ def _read_body(
 
     frame = Frame.from_heading(origin, heading)
     body.enter_world(Position(cell_at(rooms, landblock, origin), frame))
-    if read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False)):
+    on_ground = read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False))
+    if on_ground and not body.transient_state & TransientState.CONTACT:
+        # Placement found nothing underfoot (no terrain here): a level contact plane at the origin.
         body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
         body.contact_plane = Plane.horizontal(origin.z)
         body.contact_plane_cell_id = body.position.objcell_id

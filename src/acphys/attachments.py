@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
+    from acphys.managers.detection import DetectionInfo
     from acphys.managers.target import TargetInfo
     from acphys.math.frame import Frame
     from acphys.math.position import Position
@@ -48,6 +49,10 @@ class PositionManager(Protocol):
 class DetectionManager(Protocol):
     def check_detection(self) -> None: ...
 
+    def destroy_detection_cylsphere(self, context_id: int) -> bool: ...
+
+    def receive_detection_update(self, incoming_info: DetectionInfo) -> None: ...
+
 
 class TargetInfoLike(Protocol):
     quantum: float
@@ -71,6 +76,8 @@ class TargetManager(Protocol):
     def remove_voyeur(self, object_id: int) -> bool: ...
 
     def receive_update(self, target_update: TargetInfo) -> None: ...
+
+    def notify_voyeur_of_event(self, event: int) -> None: ...
 
 
 class ParticleManager(Protocol):

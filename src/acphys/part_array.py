@@ -130,6 +130,14 @@ class PartArray:
         if self.motion_table_manager is not None:
             self.motion_table_manager.handle_enter_world(self.sequence)
 
+    def handle_exit_world(self) -> None:
+        """Force every pending motion to complete, unsuccessfully.
+
+        Retail: CPartArray::HandleExitWorld @ 0x00517D90 (acclient.c:325127)
+        """
+        if self.motion_table_manager is not None:
+            self.motion_table_manager.handle_exit_world()
+
     # -- setup data, scaled ---------------------------------------------------------------
 
     def get_num_sphere(self) -> int:

@@ -34,7 +34,13 @@ from acphys.attachments import (
     ScriptManager,
     TargetManager,
 )
-from acphys.body.cells import CellMembership, SetPositionError, SetPositionFlags, SetPositionStruct
+from acphys.body.cells import (
+    NUM_PHYSICS_TS,
+    CellMembership,
+    SetPositionError,
+    SetPositionFlags,
+    SetPositionStruct,
+)
 from acphys.body.effects import Effects
 from acphys.body.managers import ManagerRequests
 from acphys.body.motion import Motion
@@ -133,6 +139,8 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         #: ``translucencyOriginal``: the floor ``SetTranslucencyInternal`` keeps translucency above.
         self.translucency_original = 0.0
         self.update_time = 0.0
+        #: ``update_times``: the latest 16-bit server stamp per ``PhysicsTimeStamp`` slot.
+        self.update_times = [0] * NUM_PHYSICS_TS
         self.jumped_this_frame = False
         self.colliding_with_environment = False
 
@@ -715,6 +723,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
     def set_hidden(self, hidden: bool) -> None:
         """Hide: end every collision and stop reporting them, and ignore them. Unhide: the reverse,
         re-reporting the objects still in the collision table when reporting is switched back on.
+        Either way the voyeurs of the body's cell hear it (``hide_object`` / ``unhide_object``).
 
         The retail hide scripts, child no-draw and cell visibility belong to
         rendering and are not ported.
@@ -727,11 +736,15 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
                 self.report_collision_end(True)
                 self.state &= ~PS.REPORT_COLLISIONS
             self.state |= PS.IGNORE_COLLISIONS
+            if self.cell is not None:
+                self.cell.hide_object(self)
         else:
             self.state &= ~(PS.HIDDEN | PS.IGNORE_COLLISIONS)
             if not self.state & PS.REPORT_COLLISIONS:
                 self.state |= PS.REPORT_COLLISIONS
                 self.report_collision_start()
+            if self.cell is not None:
+                self.cell.unhide_object(self)
 
     def set_ethereal(self, ethereal: bool, send_event: bool = False) -> bool:
         """Become ethereal, or try to become solid again.

@@ -65,6 +65,45 @@ class SetPositionFlags(enum.IntFlag):
     SEND_POSITION_EVENT = 0x1000
 
 
+class PhysicsTimeStamp(enum.IntEnum):
+    """``PhysicsTimeStamp`` (acclient.h:6084): the slots of ``update_times``."""
+
+    POSITION = 0x0
+    MOVEMENT = 0x1
+    STATE = 0x2
+    VECTOR = 0x3
+    TELEPORT = 0x4
+    SERVER_CONTROLLED_MOVE = 0x5
+    FORCE_POSITION = 0x6
+    OBJDESC = 0x7
+    INSTANCE = 0x8
+
+
+#: ``NUM_PHYSICS_TS``: how many 16-bit stamps a body keeps (acclient.h:6095).
+NUM_PHYSICS_TS = 9
+
+#: ``MoveOrTeleport``: from this far from the player a same-teleport move snaps instead of
+#: interpolating (``player_distance >= 96.0``, acclient.c:323483).
+MOVE_OR_TELEPORT_SNAP_DISTANCE = 96.0
+
+
+def is_newer(timestamp: int, new_time: int) -> bool:
+    """Whether the 16-bit stamp ``new_time`` is later than ``timestamp``, wrapping: a gap above
+    0x7FFF reads the other way round.
+
+    Retail: CPhysicsObj::is_newer @ 0x00451AD0 (acclient.c:143002)
+    """
+    if abs(new_time - timestamp) > 0x7FFF:
+        return new_time < timestamp
+    return timestamp < new_time
+
+
+def _check_stamp(stamp: int) -> int:
+    if isinstance(stamp, bool) or not isinstance(stamp, int) or not 0 <= stamp <= 0xFFFF:
+        raise ValueError(f"physics timestamp must be a 16-bit integer, got {stamp!r}")
+    return stamp
+
+
 class SetPositionError(enum.IntEnum):
     """``SetPositionError`` (acclient.h:6111): what ``SetPosition`` returns."""
 
@@ -203,6 +242,50 @@ class CellMembership:
             self.part_array.handle_enter_world()
         if self.movement_manager is not None:
             self.movement_manager.handle_enter_world()
+        return True
+
+    def newer_event(self, stamp: PhysicsTimeStamp, new_time: int) -> bool:
+        """Whether ``new_time`` is later than the body's ``stamp`` slot (:func:`is_newer`); if so it
+        is stored there.
+
+        Retail: CPhysicsObj::newer_event @ 0x00451B10 (acclient.c:143014)
+        """
+        _check_stamp(new_time)
+        if not is_newer(self.update_times[stamp], new_time):
+            return False
+        self.update_times[stamp] = new_time
+        return True
+
+    def move_or_teleport(
+        self, p: Position, teleport_timestamp: int, contact: bool, velocity: Vector3
+    ) -> bool:
+        """A server position for the body; False when ignored.
+
+        A teleport stamp older than the body's is ignored. A newer one (stored) or a body with no
+        cell teleports: ``teleport_hook``, then ``set_position`` with TELEPORT | SLIDE |
+        SEND_POSITION_EVENT. Otherwise the move is ignored without ``contact``; a body 96 m or
+        more from the player (``player_distance``, not the distance to ``p``) stops interpolating
+        and snaps there (``set_position_simple``, sliding); a nearer one interpolates, keeping
+        its heading while it is moving to something. ``velocity`` is unused, as in retail.
+
+        Retail: CPhysicsObj::MoveOrTeleport @ 0x00516330 (acclient.c:323450)
+        """
+        _check_stamp(teleport_timestamp)
+        if is_newer(teleport_timestamp, self.update_times[PhysicsTimeStamp.TELEPORT]):
+            return False
+        if self.newer_event(PhysicsTimeStamp.TELEPORT, teleport_timestamp) or self.cell is None:
+            self.teleport_hook(True)
+            flags = SetPositionFlags.TELEPORT | SetPositionFlags.SLIDE | SetPositionFlags.SEND_POSITION_EVENT
+            self.set_position(SetPositionStruct(p.copy(), flags))
+            return True
+        if not contact:
+            return False
+        if self.player_distance >= MOVE_OR_TELEPORT_SNAP_DISTANCE:
+            if self.position_manager is not None:
+                self.position_manager.stop_interpolating()
+            self.set_position_simple(p, True)
+        else:
+            self.interpolate_to(p, self.is_moving_to())
         return True
 
     def set_position_simple(self, pos: Position, sliding: bool) -> int:

@@ -6,11 +6,16 @@ from typing import TYPE_CHECKING
 
 from acphys.attachments import PositionManager, TargetManager
 from acphys.constants import float32
+from acphys.flags import PhysicsState, TransientState
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 
 if TYPE_CHECKING:
+    from acphys.managers.detection import DetectionInfo
     from acphys.managers.target import TargetInfo
+
+#: The error ``teleport_hook`` cancels a move-to with (acclient.c:322249; ACE's ``WeenieError.ITeleported``).
+TELEPORT_MOVETO_ERROR = 0x3C
 
 
 class ManagerRequests:
@@ -87,6 +92,21 @@ class ManagerRequests:
         if self.target_manager is not None:
             self.target_manager.receive_update(info)
 
+    def receive_detection_update(self, info: DetectionInfo) -> None:
+        """A cell's voyeur report for this body's global detection cylinder; a body with a detection
+        manager wakes up (non-static: made active, ``update_time`` resynced to ``Timer::cur_time``
+        when it was not).
+
+        Retail: CPhysicsObj::receive_detection_update @ 0x005105D0 (acclient.c:317646)
+        """
+        if self.detection_manager is None:
+            return
+        self.detection_manager.receive_detection_update(info)
+        if not self.state & PhysicsState.STATIC:
+            if not self.transient_state & TransientState.ACTIVE:
+                self.update_time = self.world.cur_time
+            self.transient_state |= TransientState.ACTIVE
+
     def handle_update_target(self, target_info: TargetInfo) -> None:
         """Pass a target report (a copy each) to the movement and position managers; reports with a
         non-zero context id are not for them.
@@ -99,6 +119,48 @@ class ManagerRequests:
             self.movement_manager.handle_update_target(target_info.copy())
         if self.position_manager is not None:
             self.position_manager.handle_update_target(target_info.copy())
+
+    def exit_world(self) -> None:
+        """Leaving the world: pending motions retire (part array, then movement manager), the stick
+        ends, the target is cleared and voyeurs hear ``ExitWorld``, the global detection cylinder
+        (context 0) is queued for deletion, and every object collision ends.
+
+        Retail: CPhysicsObj::exit_world @ 0x00514E60 (acclient.c:322204)
+        """
+        from acphys.managers.target import TargetStatus
+
+        if self.part_array is not None:
+            self.part_array.handle_exit_world()
+        if self.movement_manager is not None:
+            self.movement_manager.handle_exit_world()
+        if self.position_manager is not None:
+            self.position_manager.unstick()
+        if self.target_manager is not None:
+            self.target_manager.clear_target()
+            self.target_manager.notify_voyeur_of_event(TargetStatus.EXIT_WORLD)
+        if self.detection_manager is not None:
+            self.detection_manager.destroy_detection_cylsphere(0)
+        self.report_collision_end(True)
+
+    def teleport_hook(self, hide: bool) -> None:
+        """A teleport: the move-to is cancelled (error 0x3C), the stick, interpolation and constraint
+        end, the target is cleared and voyeurs hear ``Teleported``, and every object collision ends.
+        ``hide`` is unused, as in retail.
+
+        Retail: CPhysicsObj::teleport_hook @ 0x00514ED0 (acclient.c:322236)
+        """
+        from acphys.managers.target import TargetStatus
+
+        if self.movement_manager is not None:
+            self.movement_manager.cancel_move_to(TELEPORT_MOVETO_ERROR)
+        if self.position_manager is not None:
+            self.position_manager.unstick()
+            self.position_manager.stop_interpolating()
+            self.position_manager.unconstrain()
+        if self.target_manager is not None:
+            self.target_manager.clear_target()
+            self.target_manager.notify_voyeur_of_event(TargetStatus.TELEPORTED)
+        self.report_collision_end(True)
 
     def make_position_manager(self) -> PositionManager:
         """Create the position manager if the body has none; a non-static body becomes active.

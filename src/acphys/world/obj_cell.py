@@ -15,8 +15,13 @@ Subclasses (``LandCell``, ``EnvCell``) override the retail virtuals with these s
 ``find_transit_cells(p, spheres, cell_array, path)``, ``point_in_cell(point)``,
 ``find_env_collisions(transition)``, ``find_collisions(transition)``.
 
-Not ported: lights, voyeurs (detection), clip planes, visibility and the attack checks; they
-do not touch the physics tick.
+Each cell also keeps a voyeur table for global detection cylinders (``add_voyeur``,
+``remove_voyeur``): bodies entering, leaving, hiding in or unhiding in a watched cell are reported to
+every voyeur's ``receive_detection_update``. Retail's table is a hash; acphys visits voyeurs in
+insertion order.
+
+Not ported: lights, clip planes, visibility and the attack checks; they do not touch the physics
+tick.
 
 Divergences from ACE's ``ObjCell.cs`` (the decompilation wins):
 
@@ -50,11 +55,16 @@ from acphys.world.terrain import ENTIRELY_WATER_DEPTH, SOLID_VERTEX_WATER_DEPTH,
 
 if TYPE_CHECKING:
     from acphys.geometry.cylsphere import CylSphere
+    from acphys.managers.detection import DetectionCylsphere
     from acphys.physics_obj import PhysicsObj
     from acphys.physics_part import PhysicsPart
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
+
+#: ``DetectionType`` values the voyeur calls send (acclient.h:6075).
+ENTERED_DETECTION = 1
+LEFT_DETECTION = 2
 
 #: ``find_cell_list`` for cylspheres fills a static array of 10 spheres (acclient.c:347351-347357).
 MAX_CYLSPHERE_CELL_LIST = 10
@@ -104,6 +114,33 @@ class ShadowObj:
 
     def __repr__(self) -> str:
         return f"ShadowObj({self.physobj!r}, {format_cell_id(self.cell_id)})"
+
+
+class GlobalVoyeurInfo:
+    """Retail ``GlobalVoyeurInfo`` (acclient.h:52784): a voyeur of a cell, its cylinder's
+    detection type and how many times it has added itself."""
+
+    __slots__ = ("object_iid", "ref_count", "type")
+
+    def __init__(self, object_iid: int, type: int, ref_count: int) -> None:
+        self.object_iid = object_iid
+        self.type = type
+        self.ref_count = ref_count
+
+    def __repr__(self) -> str:
+        return f"GlobalVoyeurInfo(0x{self.object_iid:08X}, type={self.type}, ref_count={self.ref_count})"
+
+
+def _tell_voyeur(obj: PhysicsObj, voyeur_id: int, status: int) -> None:
+    """Report ``obj`` to the voyeur ``voyeur_id`` (when it exists), unless the object is the voyeur,
+    has id 0 or is parented (the inline test of acclient.c:347477, 347537, 347596, 347738)."""
+    from acphys.managers.detection import DetectionInfo, DetectionType
+
+    if obj.id == voyeur_id or not obj.id or obj.parent is not None:
+        return
+    voyeur = obj.world.get_object(voyeur_id)
+    if voyeur is not None:
+        voyeur.receive_detection_update(DetectionInfo(obj.id, DetectionType(status)))
 
 
 class CellInfo(NamedTuple):
@@ -185,6 +222,7 @@ class ObjCell:
         "seen_outside",
         "shadow_objects",
         "stab_list",
+        "voyeur_table",
         "water_type",
     )
 
@@ -201,6 +239,9 @@ class ObjCell:
         self.stab_list: list[int] = []
         self.seen_outside = False
         self.landblock: BlockWater | None = None
+        #: ``voyeur_table``: the global detection cylinders watching this cell, by voyeur id; made by
+        #: the first ``add_voyeur``.
+        self.voyeur_table: dict[int, GlobalVoyeurInfo] | None = None
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({format_cell_id(self.id)})"
@@ -216,18 +257,95 @@ class ObjCell:
     # --- object and shadow lists ----------------------------------------------------------
 
     def add_object(self, obj: PhysicsObj) -> None:
-        """Append ``obj`` to the object list (the voyeur notifications are not ported).
+        """Append ``obj`` to the object list and report it ``Entered`` to the voyeurs (a hidden
+        object is not reported).
 
         Retail: CObjCell::add_object @ 0x0052BF60 (acclient.c:347702)
         """
         self.objects.append(obj)
+        self.unhide_object(obj)
 
     def remove_object(self, obj: PhysicsObj) -> None:
-        """Remove ``obj`` (by identity) by moving the last object into its slot; absent is a no-op.
+        """Remove ``obj`` (by identity) by moving the last object into its slot, then report it
+        ``Left`` to the voyeurs; absent is a no-op.
 
         Retail: CObjCell::remove_object @ 0x0052C040 (acclient.c:347764)
         """
-        _swap_remove(self.objects, obj)
+        if _swap_remove(self.objects, obj):
+            self.update_all_voyeur(obj, LEFT_DETECTION)
+
+    # --- voyeurs (global detection) -------------------------------------------------------
+
+    def add_voyeur(self, voyeur_id: int, detcyl: DetectionCylsphere | None) -> bool:
+        """Let ``voyeur_id``'s global cylinder watch this cell. A known voyeur only counts one more
+        reference; a new one hears ``Entered`` for every object already here (hidden ones too).
+        False (nothing done) for voyeur id 0 or no cylinder.
+
+        Retail: CObjCell::add_voyeur @ 0x0052BB60 (acclient.c:347422)
+        """
+        if not voyeur_id or detcyl is None:
+            return False
+        if self.voyeur_table is None:
+            self.voyeur_table = {}
+        known = self.voyeur_table.pop(voyeur_id, None)
+        if known is not None:
+            known.ref_count += 1
+            self.voyeur_table[voyeur_id] = known
+            return True
+        self.voyeur_table[voyeur_id] = GlobalVoyeurInfo(voyeur_id, detcyl.detection_type, 1)
+        for obj in list(self.objects):
+            _tell_voyeur(obj, voyeur_id, ENTERED_DETECTION)
+        return True
+
+    def remove_voyeur(self, voyeur_id: int, detcyl: DetectionCylsphere | None) -> bool:
+        """Drop one reference of ``voyeur_id``; at none left it goes and hears ``Left`` for every
+        object here. False when it is not a voyeur of this cell (``detcyl`` is unused).
+
+        Retail: CObjCell::remove_voyeur @ 0x0052BC90 (acclient.c:347501)
+        """
+        if self.voyeur_table is None:
+            return False
+        known = self.voyeur_table.pop(voyeur_id, None)
+        if known is None:
+            return False
+        known.ref_count -= 1
+        if known.ref_count > 0:
+            self.voyeur_table[voyeur_id] = known
+            return True
+        for obj in list(self.objects):
+            _tell_voyeur(obj, voyeur_id, LEFT_DETECTION)
+        return True
+
+    def update_all_voyeur(self, obj: PhysicsObj, detection_type: int) -> None:
+        """Report ``obj`` with ``detection_type`` to every voyeur; a hidden object (``HIDDEN``) is
+        never reported ``Entered``, and objects with id 0 or a parent not at all.
+
+        Retail: CObjCell::update_all_voyeur @ 0x0052BD80 (acclient.c:347568)
+        """
+        from acphys.flags import PhysicsState
+
+        if not obj.id or obj.parent is not None:
+            return
+        if obj.state & PhysicsState.HIDDEN and detection_type == ENTERED_DETECTION:
+            return
+        if self.voyeur_table is None:
+            return
+        for voyeur_id in list(self.voyeur_table):
+            _tell_voyeur(obj, voyeur_id, detection_type)
+
+    def hide_object(self, obj: PhysicsObj) -> None:
+        """``obj`` was hidden: the voyeurs hear ``Left``.
+
+        Retail: CObjCell::hide_object @ 0x0052BE30 (acclient.c:347616)
+        """
+        self.update_all_voyeur(obj, LEFT_DETECTION)
+
+    def unhide_object(self, obj: PhysicsObj) -> None:
+        """``obj`` was unhidden (or entered): the voyeurs hear ``Entered`` unless it is hidden.
+
+        Retail: CObjCell::unhide_object @ 0x0052BE40 (acclient.c:347622)
+        """
+        self.update_all_voyeur(obj, ENTERED_DETECTION)
 
     def get_object(self, obj_iid: int) -> PhysicsObj | None:
         """The first object with id ``obj_iid``, or None.

@@ -1,4 +1,4 @@
-"""The ``acphys`` command (contract 3): run, check, diff and bench.
+"""The ``acphys`` command (contract 3): run, check, diff, plot, view and bench.
 
 Every error prints one line starting ``acphys: error:`` and exits non-zero
 (2 for bad input); no command ever shows a traceback.
@@ -23,9 +23,20 @@ from acphys.bench import run_suite
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
+from acphys.plot import (
+    VIEWS,
+    PathRecorder,
+    PlotError,
+    check_output,
+    parse_bodies,
+    read_paths,
+    select_bodies,
+    write_plot,
+)
 from acphys.scenario import ScenarioError, builtin_scenarios, load_scenario
 from acphys.simulation import Simulation
 from acphys.trace import TraceError, diff_traces
+from acphys.view import show
 
 #: Runs with more driver ticks than this show a progress bar (on a terminal).
 PROGRESS_TICKS = 20_000
@@ -56,6 +67,7 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--trace", metavar="FILE", help="write a JSON Lines trace of every step")
     run.add_argument("--until", metavar="SECONDS", type=float, help="stop at this time instead")
+    run.add_argument("--plot", metavar="PNG", help="draw the run's paths to a PNG (as acphys plot does)")
 
     check = commands.add_parser("check", help="validate a scenario file")
     check.add_argument("scenario")
@@ -64,6 +76,16 @@ def _build_parser() -> argparse.ArgumentParser:
     diff.add_argument("a")
     diff.add_argument("b")
     diff.add_argument("--tol", type=float, default=1e-6, help="absolute tolerance (default 1e-6)")
+
+    plot = commands.add_parser("plot", help="a PNG of a trace: paths from above, height over time, events")
+    plot.add_argument("trace")
+    plot.add_argument("-o", "--output", metavar="PNG", required=True, help="the PNG file to write")
+    plot.add_argument("--bodies", metavar="A,B", help="only these bodies (comma-separated names)")
+    plot.add_argument("--view", choices=VIEWS, help="one panel only (default: top and height)")
+
+    view = commands.add_parser("view", help="a text picture of a trace: a table per body and a map")
+    view.add_argument("trace")
+    view.add_argument("--bodies", metavar="A,B", help="only these bodies (comma-separated names)")
 
     bench = commands.add_parser("bench", help="the performance suite: rates and ratios to a baseline")
     bench.add_argument("--bodies", type=int, default=100, help="bodies per workload (default 100)")
@@ -83,13 +105,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         console = Console(width=120)  # piped output: do not squeeze the summary into 80 columns
     try:
         if args.command == "run":
-            return _run(console, args.scenario, args.trace, args.until)
+            return _run(console, args.scenario, args.trace, args.until, args.plot)
         if args.command == "check":
             return _check(console, args.scenario)
+        if args.command == "plot":
+            return _plot(console, args.trace, args.output, args.bodies, args.view)
+        if args.command == "view":
+            return _view(console, args.trace, args.bodies)
         if args.command == "bench":
             return _bench(console, args.bodies, args.seconds, args.json)
         return _diff(console, args.a, args.b, args.tol)
-    except (ScenarioError, TraceError) as error:
+    except (ScenarioError, TraceError, PlotError) as error:
         return _fail(str(error), EXIT_BAD_INPUT)
     except OSError as error:
         return _fail(f"{error.filename or ''}: {error.strerror or error}", EXIT_BAD_INPUT)
@@ -104,11 +130,36 @@ def _fail(message: str, code: int) -> int:
     return code
 
 
-def _run(console: Console, scenario: str | None, trace: str | None, until: float | None) -> int:
+def _run(
+    console: Console, scenario: str | None, trace: str | None, until: float | None, plot: str | None = None
+) -> int:
     sim = load_scenario(scenario)
     end = sim.duration if until is None else until
     if not (math.isfinite(end) and end >= 0.0):
         return _fail(f"--until must be a non-negative number of seconds, got {until}", EXIT_BAD_INPUT)
+    if plot is not None:
+        check_output(plot)
+    # --plot without --trace keeps the paths in memory; with it, reads them back from the trace.
+    recorder = PathRecorder() if plot is not None and trace is None else None
+    if recorder is not None:
+        recorder.attach(sim.bodies)
+    try:
+        _drive(console, sim, end, trace)
+    finally:
+        if recorder is not None:
+            recorder.detach(sim.bodies)
+    console.print(_summary(sim))
+    if trace is not None:
+        console.print(f"trace: {trace}")
+    if plot is not None:
+        paths = recorder.paths if recorder is not None else read_paths(str(trace))
+        write_plot(paths, plot, title=f"{sim.name}: {sim.time:g} s")
+        console.print(f"plot: {plot}")
+    return 0
+
+
+def _drive(console: Console, sim: Simulation, end: float, trace: str | None) -> None:
+    """Run ``sim`` to ``end``, with a progress bar on long runs at a terminal."""
     ticks = end * sim.driver_hz
     if ticks > PROGRESS_TICKS and console.is_terminal:
         with Progress(
@@ -123,10 +174,6 @@ def _run(console: Console, scenario: str | None, trace: str | None, until: float
             sim.run(until=end, trace=trace, progress=lambda now, _: progress.update(task, completed=now))
     else:
         sim.run(until=end, trace=trace)
-    console.print(_summary(sim))
-    if trace is not None:
-        console.print(f"trace: {trace}")
-    return 0
 
 
 def _summary(sim: Simulation) -> Table:
@@ -168,6 +215,22 @@ def _diff(console: Console, a: str, b: str, tol: float) -> int:
         return 0
     console.print(divergence.describe(), highlight=False, soft_wrap=True)
     return EXIT_DIVERGED
+
+
+def _plot(console: Console, trace: str, output: str, bodies: str | None, view: str | None) -> int:
+    names = parse_bodies(bodies)
+    check_output(output)
+    write_plot(read_paths(trace), output, bodies=names, view=view, title=Path(trace).name)
+    console.print(f"plot: {output}")
+    return 0
+
+
+def _view(console: Console, trace: str, bodies: str | None) -> int:
+    names = parse_bodies(bodies)
+    paths = read_paths(trace)
+    selected = select_bodies(paths, names)
+    show(console, selected, title=f"{Path(trace).name}: {len(selected)} bodies")
+    return 0
 
 
 def _bench(console: Console, bodies: int, seconds: float, json_file: str | None) -> int:

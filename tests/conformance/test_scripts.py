@@ -209,7 +209,7 @@ class TestCallPES:
         body = place(world, state=PS(0))
         world.physics_time = 3.0
         # RollDice(0, delta) picks the pause (acclient.c:318986); pin it to 0.4.
-        monkeypatch.setattr("acphys.body.effects.random.uniform", lambda lo, hi: 0.4 if hi == 1.0 else lo)
+        monkeypatch.setattr(world.dice, "uniform", lambda lo, hi: 0.4 if hi == 1.0 else lo)
         body.call_pes(SCRIPT_B, 1.0)
         (hook,) = body.hooks
         assert (

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import enum
-import random
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -337,8 +336,8 @@ class CellMembership:
         result = SetPositionError.GENERAL_FAILURE
         for _ in range(sps.num_tries):
             pos = sps.pos.copy()
-            dx = random.uniform(-1.0, 1.0) * sps.xrad
-            dy = random.uniform(-1.0, 1.0) * sps.yrad
+            dx = self.world.dice.uniform(-1.0, 1.0) * sps.xrad
+            dy = self.world.dice.uniform(-1.0, 1.0) * sps.yrad
             pos.frame.origin.x += dx
             pos.frame.origin.y += dy
             result = self.set_position_with_struct(pos, sps, transit)

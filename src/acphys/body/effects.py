@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import random
-
 from acphys.attachments import AnimHook, ParticleManager
 from acphys.constants import EPSILON
 from acphys.hooks import FPHook, HookType
@@ -126,7 +124,7 @@ class Effects:
         Retail: CPhysicsObj::CallPES @ 0x00511AF0 (acclient.c:318972)
         """
         if delta >= EPSILON:
-            pause = random.uniform(0.0, delta)
+            pause = self.world.dice.uniform(0.0, delta)
             self.hooks.insert(0, FPHook(HookType.CALL_PES, self.world.physics_time, pause, 0.0, 1.0, pes))
         elif self.cell is not None:
             self.play_script_internal(pes)

@@ -81,9 +81,9 @@ class ParticleType(enum.IntEnum):
     GLOBAL_VELOCITY = 12
 
 
-def _roll(lower: float, upper: float) -> float:
-    """``Random::RollDice(lower, upper)``: uniform in [lower, upper]."""
-    return random.uniform(lower, upper)
+def _roll(dice: random.Random, lower: float, upper: float) -> float:
+    """``Random::RollDice(lower, upper)``: uniform in [lower, upper], from the world's ``dice``."""
+    return dice.uniform(lower, upper)
 
 
 class ParticleEmitterInfo:
@@ -241,27 +241,27 @@ class ParticleEmitterInfo:
         """Neither ``total_particles`` nor ``total_seconds`` limits the emitter (EmitParticle's flag)."""
         return not self.total_particles and self.total_seconds == 0.0
 
-    def get_random_start_scale(self) -> float:
+    def get_random_start_scale(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomStartScale @ 0x005170D0 (acclient.c:324323)"""
-        return min(max(_roll(-1.0, 1.0) * self.scale_rand + self.start_scale, 0.1), 10.0)
+        return min(max(_roll(dice, -1.0, 1.0) * self.scale_rand + self.start_scale, 0.1), 10.0)
 
-    def get_random_final_scale(self) -> float:
+    def get_random_final_scale(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomFinalScale @ 0x00517120 (acclient.c:324341)"""
-        return min(max(_roll(-1.0, 1.0) * self.scale_rand + self.final_scale, 0.1), 10.0)
+        return min(max(_roll(dice, -1.0, 1.0) * self.scale_rand + self.final_scale, 0.1), 10.0)
 
-    def get_random_start_trans(self) -> float:
+    def get_random_start_trans(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomStartTrans @ 0x00517170 (acclient.c:324359)"""
-        return min(max(_roll(-1.0, 1.0) * self.trans_rand + self.start_trans, 0.0), 1.0)
+        return min(max(_roll(dice, -1.0, 1.0) * self.trans_rand + self.start_trans, 0.0), 1.0)
 
-    def get_random_final_trans(self) -> float:
+    def get_random_final_trans(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomFinalTrans @ 0x005171C0 (acclient.c:324377)"""
-        return min(max(_roll(-1.0, 1.0) * self.trans_rand + self.final_trans, 0.0), 1.0)
+        return min(max(_roll(dice, -1.0, 1.0) * self.trans_rand + self.final_trans, 0.0), 1.0)
 
-    def get_random_lifespan(self) -> float:
+    def get_random_lifespan(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomLifespan @ 0x00517210 (acclient.c:324395)"""
-        return max(_roll(-1.0, 1.0) * self.lifespan_rand + self.lifespan, 0.0)
+        return max(_roll(dice, -1.0, 1.0) * self.lifespan_rand + self.lifespan, 0.0)
 
-    def get_random_offset(self) -> Vector3:
+    def get_random_offset(self, dice: random.Random) -> Vector3:
         """A random direction normal to ``offset_dir`` times a distance in [min_offset, max_offset].
 
         Three rolls (z, y, x in draw order) make a vector; its component along
@@ -270,26 +270,26 @@ class ParticleEmitterInfo:
 
         Retail: ParticleEmitterInfo::GetRandomOffset @ 0x005174A0 (acclient.c:324527)
         """
-        rz = _roll(-1.0, 1.0)
-        ry = _roll(-1.0, 1.0)
-        rx = _roll(-1.0, 1.0)
+        rz = _roll(dice, -1.0, 1.0)
+        ry = _roll(dice, -1.0, 1.0)
+        rx = _roll(dice, -1.0, 1.0)
         raw = Vector3(rx, ry, rz)
         offset = raw - self.offset_dir * raw.dot(self.offset_dir)
         if offset.normalize_check_small():
             return Vector3()
-        return offset * (_roll(0.0, 1.0) * (self.max_offset - self.min_offset) + self.min_offset)
+        return offset * (_roll(dice, 0.0, 1.0) * (self.max_offset - self.min_offset) + self.min_offset)
 
-    def get_random_a(self) -> Vector3:
+    def get_random_a(self, dice: random.Random) -> Vector3:
         """Retail: ParticleEmitterInfo::GetRandomA @ 0x00517610 (acclient.c:324595)"""
-        return self.a * ((self.max_a - self.min_a) * _roll(0.0, 1.0) + self.min_a)
+        return self.a * ((self.max_a - self.min_a) * _roll(dice, 0.0, 1.0) + self.min_a)
 
-    def get_random_b(self) -> Vector3:
+    def get_random_b(self, dice: random.Random) -> Vector3:
         """Retail: ParticleEmitterInfo::GetRandomB @ 0x00517670 (acclient.c:324617)"""
-        return self.b * ((self.max_b - self.min_b) * _roll(0.0, 1.0) + self.min_b)
+        return self.b * ((self.max_b - self.min_b) * _roll(dice, 0.0, 1.0) + self.min_b)
 
-    def get_random_c(self) -> Vector3:
+    def get_random_c(self, dice: random.Random) -> Vector3:
         """Retail: ParticleEmitterInfo::GetRandomC @ 0x005176D0 (acclient.c:324639)"""
-        return self.c * ((self.max_c - self.min_c) * _roll(0.0, 1.0) + self.min_c)
+        return self.c * ((self.max_c - self.min_c) * _roll(dice, 0.0, 1.0) + self.min_c)
 
     def should_emit_particle(
         self,
@@ -468,8 +468,8 @@ class Particle:
         elif pt == ParticleType.EXPLODE:
             self.a = a.copy()
             self.b = b.copy()
-            yaw = _roll(-math.pi, math.pi)
-            pitch = _roll(-math.pi, math.pi)
+            yaw = _roll(parent.world.dice, -math.pi, math.pi)
+            pitch = _roll(parent.world.dice, -math.pi, math.pi)
             direction = Vector3(
                 math.cos(yaw) * c.x * math.cos(pitch),
                 math.sin(yaw) * c.y * math.cos(pitch),
@@ -724,15 +724,16 @@ class ParticleEmitter:
             return
         part = self.part_storage[index]
         self.parts[index] = part
-        lifespan = info.get_random_lifespan()
-        final_trans = info.get_random_final_trans()
-        start_trans = info.get_random_start_trans()
-        final_scale = info.get_random_final_scale()
-        start_scale = info.get_random_start_scale()
-        c = info.get_random_c()
-        b = info.get_random_b()
-        a = info.get_random_a()
-        offset = info.get_random_offset()
+        dice = self.parent.world.dice
+        lifespan = info.get_random_lifespan(dice)
+        final_trans = info.get_random_final_trans(dice)
+        start_trans = info.get_random_start_trans(dice)
+        final_scale = info.get_random_final_scale(dice)
+        start_scale = info.get_random_start_scale(dice)
+        c = info.get_random_c(dice)
+        b = info.get_random_b(dice)
+        a = info.get_random_a(dice)
+        offset = info.get_random_offset(dice)
         self.particles[index].init(
             self.parent,
             self.part_index,

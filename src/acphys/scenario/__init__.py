@@ -59,15 +59,19 @@ class _Header:
     duration: float
     driver_hz: float
     player: str | None
+    seed: int
 
 
 def _read_header(ctx: Ctx, raw: Any, default_name: str) -> _Header:
-    table = read.table(ctx, "scenario", raw, ("name", "duration", "driver_hz", "player"))
+    table = read.table(ctx, "scenario", raw, ("name", "duration", "driver_hz", "player", "seed"))
     name = read.string(ctx, "scenario.name", table["name"]) if "name" in table else default_name
     duration = read.ranged(ctx, "scenario.duration", table.get("duration", 10.0), 0.0, 1e6, open_low=True)
     driver_hz = read.ranged(ctx, "scenario.driver_hz", table.get("driver_hz", 60.0), 0.0, 1e4, open_low=True)
     player = read.string(ctx, "scenario.player", table["player"]) if "player" in table else None
-    return _Header(name, duration, driver_hz, player)
+    seed = table.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ctx.fail("scenario.seed", f"expected a non-negative whole number, got {read.kind(seed)}")
+    return _Header(name, duration, driver_hz, player, seed)
 
 
 SETUP_KEYS = (
@@ -275,7 +279,7 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
     scripts = read_scripts(ctx, document.get("script", {}))
     setups = _read_setups(ctx, document.get("setup", {}), tables)
 
-    world = World()
+    world = World(seed=header.seed)
     read_landblocks(ctx, document.get("landblock", []), world)
     rooms = read_buildings(ctx, document.get("building", []), world)
     find_setup = _setup_lookup(ctx, setups)

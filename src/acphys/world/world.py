@@ -15,6 +15,7 @@ where nothing is underfoot.
 from __future__ import annotations
 
 import math
+import random
 from typing import TYPE_CHECKING
 
 from acphys.math.cell_id import FIRST_ENV_CELL, inbound_valid_cellid, is_outdoor
@@ -48,7 +49,10 @@ def flat_landblock(landblock: int, height: float) -> LandBlock:
 class World:
     """The cells, the clocks, the objects and the player object of one simulation."""
 
-    def __init__(self) -> None:
+    def __init__(self, seed: int = 0) -> None:
+        #: Retail's ``Random::RollDice`` draws (placement scatter, CallPES pauses, particles) come
+        #: from this generator, so the same world and seed repeat a run exactly.
+        self.dice = random.Random(seed)
         #: ``Timer::cur_time``: the wall clock the driver advances (seconds).
         self.cur_time = 0.0
         #: ``PhysicsTimer::curr_time``: the time of the physics slice being integrated.

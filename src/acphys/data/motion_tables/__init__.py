@@ -1,0 +1,1 @@
+"""The built-in motion tables, in the scenario format (``[motion_table]``)."""

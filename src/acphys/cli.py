@@ -177,7 +177,7 @@ def _drive(console: Console, sim: Simulation, end: float, trace: str | None) -> 
 
 
 def _summary(sim: Simulation) -> Table:
-    table = Table(title=f"{sim.name}: {sim.time:g} s simulated, {len(sim.bodies)} bodies")
+    table = Table(title=f"{sim.name}: {sim.time:g} s simulated, {_count(len(sim.bodies), 'body', 'bodies')}")
     for column in ("body", "cell", "origin (m)", "heading", "velocity (m/s)", "transient"):
         table.add_column(column, no_wrap=column != "transient")
     for body in sim.bodies:
@@ -192,15 +192,20 @@ def _summary(sim: Simulation) -> Table:
     return table
 
 
+def _count(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
+
+
 def _triple(v: Vector3) -> str:
     return f"{v.x:.2f} {v.y:.2f} {v.z:.2f}"
 
 
 def _check(console: Console, scenario: str) -> int:
     sim = load_scenario(scenario)
+    bodies = _count(len(sim.bodies), "body", "bodies")
+    events = _count(len(sim.events), "event", "events")
     console.print(
-        f"ok: {sim.name}: {len(sim.bodies)} bodies, {len(sim.events)} events, "
-        f"{sim.duration:g} s at {sim.driver_hz:g} Hz",
+        f"ok: {sim.name}: {bodies}, {events}, {sim.duration:g} s at {sim.driver_hz:g} Hz",
         soft_wrap=True,
     )
     return 0

@@ -1,4 +1,4 @@
-"""The ``acphys`` command (contract 3): run, check, diff, plot, view and bench.
+"""The ``acphys`` command (contract 3): run, check, diff, plot, view, bench and dat.
 
 Every error prints one line starting ``acphys: error:`` and exits non-zero
 (2 for bad input); no command ever shows a traceback.
@@ -20,6 +20,7 @@ from rich.table import Table
 
 from acphys import __version__
 from acphys.bench import run_suite
+from acphys.dat import REGION_ID, DatError, DatFile, unpack_region, unpack_setup
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
@@ -91,7 +92,39 @@ def _build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--bodies", type=int, default=100, help="bodies per workload (default 100)")
     bench.add_argument("--seconds", type=float, default=5.0, help="simulated seconds (default 5)")
     bench.add_argument("--json", metavar="FILE", help="also write the figures as JSON")
+
+    dat = commands.add_parser("dat", help="read the user's retail DAT files")
+    dat_commands = dat.add_subparsers(dest="dat_command", required=True, parser_class=_Parser)
+    info = dat_commands.add_parser("info", help="the header and the number of records")
+    info.add_argument("file")
+    listing = dat_commands.add_parser("list", help="record ids and sizes")
+    listing.add_argument("file")
+    listing.add_argument("--type", metavar="0xNN", type=_dat_type, help="only ids with this high byte")
+    setup = dat_commands.add_parser("setup", help="a setup's physics fields")
+    setup.add_argument("file")
+    setup.add_argument("id", type=_dat_id, help="the setup's id (0x02xxxxxx)")
+    heights = dat_commands.add_parser("heights", help=f"the region's land height table ({REGION_ID:#010x})")
+    heights.add_argument("file")
     return parser
+
+
+def _dat_id(text: str) -> int:
+    """A 32-bit id in hex (``0x`` optional) for argparse."""
+    try:
+        value = int(text, 16)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a hex id: {text!r}") from None
+    if not 0 <= value <= 0xFFFFFFFF:
+        raise argparse.ArgumentTypeError(f"not a 32-bit id: {text!r}")
+    return value
+
+
+def _dat_type(text: str) -> int:
+    """An id's high byte in hex (``0x02`` for setups) for argparse."""
+    value = _dat_id(text)
+    if value > 0xFF:
+        raise argparse.ArgumentTypeError(f"a type is one byte (like 0x02), got {text!r}")
+    return value
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -114,8 +147,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _view(console, args.trace, args.bodies)
         if args.command == "bench":
             return _bench(console, args.bodies, args.seconds, args.json)
+        if args.command == "dat":
+            return _dat(console, args)
         return _diff(console, args.a, args.b, args.tol)
-    except (ScenarioError, TraceError, PlotError) as error:
+    except (ScenarioError, TraceError, PlotError, DatError) as error:
         return _fail(str(error), EXIT_BAD_INPUT)
     except OSError as error:
         return _fail(f"{error.filename or ''}: {error.strerror or error}", EXIT_BAD_INPUT)
@@ -262,6 +297,68 @@ def _bench(console: Console, bodies: int, seconds: float, json_file: str | None)
         Path(json_file).write_text(figures + "\n", encoding="utf-8")
         console.print(f"figures: {json_file}")
     return 0
+
+
+def _dat(console: Console, args: argparse.Namespace) -> int:
+    with DatFile(args.file) as dat:
+        if args.dat_command == "info":
+            _dat_info(console, dat)
+        elif args.dat_command == "list":
+            for entry in dat.entries():
+                if args.type is None or entry.object_id >> 24 == args.type:
+                    flag = " compressed" if entry.compressed else ""
+                    console.print(f"{entry.object_id:#010x} {entry.size:>9}{flag}", highlight=False)
+        elif args.dat_command == "setup":
+            _dat_setup(console, dat, args.id)
+        else:
+            table = unpack_region(dat.read(REGION_ID)).height_table
+            for row in range(0, len(table), 8):
+                cells = " ".join(f"{value:8.2f}" for value in table[row : row + 8])
+                console.print(f"{row:3d}: {cells}", highlight=False)
+    return 0
+
+
+def _dat_info(console: Console, dat: DatFile) -> None:
+    header = dat.header
+    lines = [
+        f"file: {dat.path}",
+        f"data set: {header.data_set_name} (subset {header.data_subset})",
+        f"block size: {header.block_size} bytes; file size: {header.file_size} bytes",
+        f"free blocks: {header.free_blocks} (first {header.first_free:#x}, last {header.final_free:#x})",
+        f"directory root: {header.btree_root:#x}; master map: {header.master_map_id:#010x}",
+        f"pack versions: engine {header.eng_pack_vnum}, game {header.game_pack_vnum}; "
+        f"iteration stamp {header.id_vnum}",
+        f"records: {sum(1 for _ in dat.entries())}",
+    ]
+    for line in lines:
+        console.print(line, highlight=False, soft_wrap=True)
+
+
+def _dat_setup(console: Console, dat: DatFile, setup_id: int) -> None:
+    record = unpack_setup(dat.read(setup_id))
+    console.print(f"setup {record.did:#010x}: {_count(len(record.parts), 'part', 'parts')}", highlight=False)
+    for sphere in record.spheres:
+        console.print(f"  sphere: center {_g(sphere.center)}, radius {sphere.radius:.4g}", highlight=False)
+    for cyl in record.cylspheres:
+        console.print(
+            f"  cylsphere: low {_g(cyl.low_pt)}, radius {cyl.radius:.4g}, height {cyl.height:.4g}",
+            highlight=False,
+        )
+    sort = record.sorting_sphere
+    for line in (
+        f"  height {record.height:.4g}, radius {record.radius:.4g}",
+        f"  step up {record.step_up_height:.4g}, step down {record.step_down_height:.4g}",
+        f"  sorting sphere: center {_g(sort.center)}, radius {sort.radius:.4g}",
+        f"  allow free heading: {'yes' if record.allow_free_heading else 'no'}; "
+        f"physics BSP: {'yes' if record.has_physics_bsp else 'no'}",
+        f"  motion table {record.default_mtable_id:#010x}",
+    ):
+        console.print(line, highlight=False)
+
+
+def _g(v: Vector3) -> str:
+    """A DAT vector: float32 values to 4 significant figures."""
+    return f"{v.x:.4g} {v.y:.4g} {v.z:.4g}"
 
 
 if __name__ == "__main__":

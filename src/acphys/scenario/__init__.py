@@ -31,6 +31,7 @@ from acphys.physics_obj import PhysicsObj
 from acphys.scenario import values as read
 from acphys.scenario.events import read_event, speed_limited
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
+from acphys.scenario.retail_data import HUMAN_SETUP_ID, SETUP_ID_TYPE, RetailData, read_data, setup_id
 from acphys.scenario.scripts import read_scripts
 from acphys.scenario.values import Ctx, ScenarioError
 from acphys.scenario.world_data import (
@@ -153,8 +154,12 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str
     return setups
 
 
-def _builtin_setup(name: str) -> Setup:
-    setup = BUILTIN_SETUPS[name]()
+def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
+    """A built-in setup; with a portal DAT the human is retail's setup 0x02000001."""
+    if name == "human" and data.portal is not None:
+        setup = data.setup(key, HUMAN_SETUP_ID, name)
+    else:
+        setup = BUILTIN_SETUPS[name]()
     if name in BUILTIN_SETUP_TABLES:
         setup.motion_table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
     return setup
@@ -185,16 +190,22 @@ def _skill(ctx: Ctx, key: str, value: Any) -> int:
     return value
 
 
-def _setup_lookup(ctx: Ctx, setups: dict[str, Setup]) -> SetupLookup:
-    """Finds a setup by name: the scenario's ``[setup.NAME]`` first, then the built-in ones."""
+def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData) -> SetupLookup:
+    """Finds a setup by name: the scenario's ``[setup.NAME]`` first, then the built-in ones,
+    then a portal DAT setup id (``"0x02000001"``)."""
 
     def find(key: str, value: Any) -> Setup:
         name = read.string(ctx, key, value)
         if name in setups:
             return setups[name]
         if name in BUILTIN_SETUPS:
-            return _builtin_setup(name)
-        known = ", ".join([*BUILTIN_SETUPS, *setups])
+            return _builtin_setup(key, name, data)
+        dat_id = setup_id(name)
+        if dat_id is not None:
+            if dat_id >> 24 != SETUP_ID_TYPE:
+                raise ctx.fail(key, f"{name} is not a setup id (setup ids are 0x02xxxxxx)")
+            return data.setup(key, dat_id)
+        known = ", ".join([*BUILTIN_SETUPS, *setups, "a DAT setup id like '0x02000001'"])
         raise ctx.fail(key, f"no setup named {name!r} (known: {known})")
 
     return find
@@ -263,11 +274,31 @@ def _read_body(
 
 # -- entry points ---------------------------------------------------------------------------
 
-TOP_KEYS = ("scenario", "landblock", "motion_table", "script", "setup", "building", "object", "body", "event")
+TOP_KEYS = (
+    "scenario",
+    "data",
+    "landblock",
+    "motion_table",
+    "script",
+    "setup",
+    "building",
+    "object",
+    "body",
+    "event",
+)
 
 
-def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "scenario") -> Simulation:
-    """Build a :class:`Simulation` from scenario TOML text; ``source`` names it in errors."""
+def parse_scenario(
+    text: str,
+    source: str = "<scenario>",
+    default_name: str = "scenario",
+    folder: str | Path | None = None,
+) -> Simulation:
+    """Build a :class:`Simulation` from scenario TOML text; ``source`` names it in errors.
+
+    ``folder`` is where relative ``[data]`` paths resolve (the scenario file's folder; the
+    current directory when None).
+    """
     ctx = Ctx(source)
     try:
         document = tomllib.loads(text)
@@ -280,21 +311,22 @@ def parse_scenario(text: str, source: str = "<scenario>", default_name: str = "s
     setups = _read_setups(ctx, document.get("setup", {}), tables)
 
     world = World(seed=header.seed)
-    read_landblocks(ctx, document.get("landblock", []), world)
-    rooms = read_buildings(ctx, document.get("building", []), world)
-    find_setup = _setup_lookup(ctx, setups)
-    objects = read_objects(ctx, document.get("object", []), world, find_setup, rooms)
-    raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
-    if not raw_bodies:
-        raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
-    bodies: list[PhysicsObj] = []
-    for index, raw in enumerate(raw_bodies):
-        body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms)
-        if any(other.name == body.name for other in bodies):
-            raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
-        if any(other.name == body.name for other in objects):
-            raise ctx.fail(f"body[{index}].name", f"a body and an object are both named {body.name!r}")
-        bodies.append(body)
+    with read_data(ctx, document.get("data", {}), folder) as data:
+        read_landblocks(ctx, document.get("landblock", []), world, data)
+        rooms = read_buildings(ctx, document.get("building", []), world)
+        find_setup = _setup_lookup(ctx, setups, data)
+        objects = read_objects(ctx, document.get("object", []), world, find_setup, rooms)
+        raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
+        if not raw_bodies:
+            raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
+        bodies: list[PhysicsObj] = []
+        for index, raw in enumerate(raw_bodies):
+            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms)
+            if any(other.name == body.name for other in bodies):
+                raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
+            if any(other.name == body.name for other in objects):
+                raise ctx.fail(f"body[{index}].name", f"a body and an object are both named {body.name!r}")
+            bodies.append(body)
     by_name = {body.name: body for body in bodies}
     if header.player is not None:
         if header.player not in by_name:
@@ -332,7 +364,7 @@ def load_scenario(path: str | Path | None = None) -> Simulation:
         raise ScenarioError(f"{file}: no such file") from None
     except (OSError, UnicodeDecodeError) as error:
         raise ScenarioError(f"{file}: cannot read: {error}") from None
-    return parse_scenario(text, source=str(file), default_name=file.stem)
+    return parse_scenario(text, source=str(file), default_name=file.stem, folder=file.parent)
 
 
 def builtin_scenarios() -> list[str]:

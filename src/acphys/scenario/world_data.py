@@ -21,6 +21,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
 from acphys.scenario import values as read
+from acphys.scenario.retail_data import RetailData
 from acphys.scenario.values import Ctx
 from acphys.setup import Setup
 from acphys.world.env_cell import EnvCell
@@ -75,9 +76,10 @@ def _water(ctx: Ctx, key: str, value: Any) -> list[int]:
     raise ctx.fail(key, f'expected "none", "all" or {NUM_VERTICES} terrain words, got {read.kind(value)}')
 
 
-def read_landblocks(ctx: Ctx, raw: Any, world: World) -> None:
-    """Add each ``[[landblock]]`` to ``world``: flat ``height``, or ``heights`` through a
-    ``height_table``; ``water`` as terrain words."""
+def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
+    """Add each ``[[landblock]]`` to ``world``: flat ``height``, ``heights`` through a
+    ``height_table`` (the portal DAT's region table when it has none), or with only ``id`` the
+    cell DAT's terrain; ``water`` as terrain words."""
     seen: set[int] = set()
     for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
         key = f"landblock[{index}]"
@@ -94,20 +96,36 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World) -> None:
             )
         if "heights" in entry:
             height_bytes = _whole_numbers(ctx, f"{key}.heights", entry["heights"], "height bytes", 0xFF)
-            if "height_table" not in entry:
+            if "height_table" in entry:
+                table = _height_table(ctx, f"{key}.height_table", entry["height_table"])
+            elif data.portal is not None:
+                table = list(data.height_table(f"{key}.heights"))
+            else:
                 raise ctx.fail(
                     f"{key}.height_table",
-                    f"missing: heights index a height table and acphys has no default (the retail "
-                    f"region table is not shipped); give {HEIGHT_TABLE_SIZE} heights in metres",
+                    f"missing: heights index a height table and acphys has no default; give "
+                    f"{HEIGHT_TABLE_SIZE} heights in metres, or a [data] portal for retail's region table",
                 )
-            table = _height_table(ctx, f"{key}.height_table", entry["height_table"])
         elif "height" in entry:
             if "height_table" in entry:
                 raise ctx.fail(f"{key}.height_table", "only with heights (flat ground at height needs none)")
             height = read.ranged(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
             height_bytes, table = [0] * NUM_VERTICES, [height] * HEIGHT_TABLE_SIZE
+        elif data.cell is not None:
+            for extra in ("height_table", "water"):
+                if extra in entry:
+                    raise ctx.fail(
+                        f"{key}.{extra}",
+                        "only with height or heights (a landblock from the cell DAT has its own terrain)",
+                    )
+            world.add_landblock(LandBlock(data.landblock(f"{key}.id", landblock)))
+            continue
         else:
-            raise ctx.fail(f"{key}.height", "missing (a landblock needs height, or heights and height_table)")
+            raise ctx.fail(
+                f"{key}.height",
+                "missing (a landblock needs height, or heights and height_table, or a [data] cell "
+                "to read its terrain from)",
+            )
         words = _water(ctx, f"{key}.water", entry.get("water", "none"))
         world.add_landblock(
             LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, height_bytes, words, table))

@@ -1,0 +1,169 @@
+"""Scenario ``[data]``: the user's retail DAT files, as a source of setups, the region's land
+height table and landblock terrain.
+
+Not retail routines: the scenario keys are acphys's (README "Scenarios"); the records are read
+with :mod:`acphys.dat`. Every problem, including a damaged DAT file, is a one-line
+:class:`ScenarioError` naming the file and the key that needed the record.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from types import TracebackType
+from typing import Any
+
+from acphys.dat import REGION_ID, DatError, DatFile, landblock_terrain, unpack_region, unpack_setup
+from acphys.dat.records import SetupRecord
+from acphys.scenario import values as read
+from acphys.scenario.values import Ctx
+from acphys.setup import Setup
+from acphys.world.terrain import LandBlockStruct
+
+DATA_KEYS = ("portal", "cell")
+#: ``data_set_lm`` each ``[data]`` key expects (``DATFILE_TYPE``, acclient.h:3116).
+DATA_SETS = {"portal": 1, "cell": 2}
+#: The retail human's setup, which the built-in ``human`` becomes with a portal DAT.
+HUMAN_SETUP_ID = 0x02000001
+#: The id high byte of setup records.
+SETUP_ID_TYPE = 0x02
+
+
+class RetailData:
+    """The DAT files a scenario's ``[data]`` names, open while it loads (use as a context manager).
+
+    Records are read on first use and kept: the region's height table, setup records (each
+    :meth:`setup` call returns a fresh :class:`Setup`).
+    """
+
+    def __init__(self, ctx: Ctx, portal: DatFile | None = None, cell: DatFile | None = None) -> None:
+        self.ctx = ctx
+        self.portal = portal
+        self.cell = cell
+        self._height_table: tuple[float, ...] | None = None
+        self._setups: dict[int, SetupRecord] = {}
+
+    def __enter__(self) -> RetailData:
+        return self
+
+    def __exit__(
+        self, kind: type[BaseException] | None, error: BaseException | None, trace: TracebackType | None
+    ) -> None:
+        self.close()
+
+    def close(self) -> None:
+        for dat in (self.portal, self.cell):
+            if dat is not None:
+                dat.close()
+
+    def _record(self, key: str, dat: DatFile, object_id: int, what: str) -> bytes:
+        """The bytes of record ``object_id``, or a ScenarioError naming ``key``."""
+        try:
+            if dat.lookup(object_id) is None:
+                raise self.ctx.fail(key, f"no {what} {object_id:#010x} in {dat.path}")
+            return dat.read(object_id)
+        except DatError as error:
+            raise self.ctx.fail(key, str(error)) from None
+
+    def height_table(self, key: str) -> tuple[float, ...]:
+        """The land height table of the portal's region record (0x13000000)."""
+        if self.portal is None:
+            raise self.ctx.fail(key, "the region's height table needs a [data] portal")
+        if self._height_table is None:
+            data = self._record(key, self.portal, REGION_ID, "region")
+            try:
+                self._height_table = unpack_region(data).height_table
+            except DatError as error:
+                raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
+        return self._height_table
+
+    def setup(self, key: str, setup_id: int, name: str | None = None) -> Setup:
+        """The physics view of the portal's setup ``setup_id`` (named ``name``, else its id)."""
+        if self.portal is None:
+            raise self.ctx.fail(key, f"setup {setup_id:#010x} is a DAT setup: it needs a [data] portal")
+        record = self._setups.get(setup_id)
+        if record is None:
+            data = self._record(key, self.portal, setup_id, "setup")
+            try:
+                record = unpack_setup(data)
+            except DatError as error:
+                raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
+            if record.did != setup_id:
+                raise self.ctx.fail(
+                    key, f"{self.portal.path}: record {setup_id:#010x} holds setup {record.did:#010x}"
+                )
+            if record.has_physics_bsp:
+                raise self.ctx.fail(
+                    key,
+                    f"setup {setup_id:#010x} has a physics BSP (on its parts' GfxObjs), which acphys "
+                    "does not read yet",
+                )
+            self._setups[setup_id] = record
+        return record.to_setup(name)
+
+    def landblock(self, key: str, landblock: int) -> LandBlockStruct:
+        """Landblock ``0xXXYY``'s terrain: record 0xXXYYFFFF of the cell DAT, its height bytes
+        through the portal's height table."""
+        if self.cell is None:
+            raise self.ctx.fail(key, "terrain from the DAT needs a [data] cell")
+        if self.portal is None:
+            raise self.ctx.fail(
+                key, "terrain from the cell DAT needs a [data] portal too (for the region's height table)"
+            )
+        table = self.height_table(key)
+        block_id = (landblock << 16) | 0xFFFF
+        data = self._record(key, self.cell, block_id, "landblock")
+        try:
+            terrain = landblock_terrain(data, table)
+        except DatError as error:
+            raise self.ctx.fail(key, f"{self.cell.path}: {error}") from None
+        if terrain.block_id != block_id:
+            raise self.ctx.fail(
+                key, f"{self.cell.path}: record {block_id:#010x} holds landblock {terrain.block_id:#010x}"
+            )
+        return terrain
+
+
+def setup_id(name: str) -> int | None:
+    """The DAT setup id a setup name like ``"0x02000001"`` spells, or None for other names."""
+    if not name.lower().startswith("0x"):
+        return None
+    try:
+        return int(name, 16)
+    except ValueError:
+        return None
+
+
+def _open(ctx: Ctx, name: str, value: Any, folder: Path) -> DatFile:
+    """Open ``[data]`` key ``name`` ("portal" or "cell") and check the file's data set."""
+    key = f"data.{name}"
+    path = Path(read.string(ctx, key, value)).expanduser()
+    if not path.is_absolute():
+        path = folder / path
+    try:
+        dat = DatFile(path)
+    except FileNotFoundError:
+        raise ctx.fail(key, f"no such file {path}") from None
+    except DatError as error:
+        raise ctx.fail(key, str(error)) from None
+    except OSError as error:
+        raise ctx.fail(key, f"cannot read {path}: {error.strerror or error}") from None
+    if dat.header.data_set != DATA_SETS[name]:
+        dat.close()
+        found = f"a {dat.header.data_set_name} DAT (data set {dat.header.data_set})"
+        raise ctx.fail(key, f"{path} is {found}, not a {name} DAT")
+    return dat
+
+
+def read_data(ctx: Ctx, raw: Any, folder: str | Path | None = None) -> RetailData:
+    """Open the DAT files of a ``[data]`` table; relative paths resolve against ``folder``
+    (the scenario file's folder; the current directory when None)."""
+    table = read.table(ctx, "data", raw, DATA_KEYS)
+    base = Path(folder) if folder is not None else Path()
+    portal = _open(ctx, "portal", table["portal"], base) if "portal" in table else None
+    try:
+        cell = _open(ctx, "cell", table["cell"], base) if "cell" in table else None
+    except BaseException:
+        if portal is not None:
+            portal.close()
+        raise
+    return RetailData(ctx, portal, cell)

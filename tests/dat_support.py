@@ -151,3 +151,178 @@ def simple_dat(
         entries.append(writer.entry(object_id, data, bitfield=(2 << 16) | int(compress)))
     root = writer.store(Writer.node([0], entries))
     return writer.write(tmp_path / name, root, data_set=data_set)
+
+
+#: A one-part setup whose part is a box GfxObj with a physics BSP.
+BOX_SETUP_ID = 0x02000010
+BOX_GFXOBJ_ID = 0x01000010
+
+
+def compressed_u32(value: int) -> bytes:
+    """``SB_As32Bit_Compressed``: 1 byte below 0x80, 2 (0x80 | high) below 0x4000, else 4 bytes
+    (0xC0 | bits 24-29, bits 16-23, then the low 16 bits as a u16)."""
+    if value < 0x80:
+        return bytes([value])
+    if value < 0x4000:
+        return bytes([0x80 | value >> 8, value & 0xFF])
+    return bytes([0xC0 | value >> 24, (value >> 16) & 0xFF]) + struct.pack("<H", value & 0xFFFF)
+
+
+def box_corner(index: int, lo: Sequence[float], hi: Sequence[float]) -> tuple[float, float, float]:
+    """Box vertex ``index``: bit 0 picks max x, bit 1 max y, bit 2 max z."""
+    return tuple((hi if index >> axis & 1 else lo)[axis] for axis in range(3))  # type: ignore[return-value]
+
+
+#: The six faces as vertex indices, counter-clockwise seen from outside, with their outward
+#: normal axis and sign: +x, -x, +y, -y, +z, -z.
+BOX_FACES = (
+    ((1, 3, 7, 5), 0, 1.0),
+    ((0, 4, 6, 2), 0, -1.0),
+    ((2, 6, 7, 3), 1, 1.0),
+    ((0, 1, 5, 4), 1, -1.0),
+    ((4, 5, 7, 6), 2, 1.0),
+    ((0, 2, 3, 1), 2, -1.0),
+)
+
+
+def box_gfxobj_record(
+    lo: Sequence[float],
+    hi: Sequence[float],
+    gfxobj_id: int = BOX_GFXOBJ_ID,
+    flags: int = 0x3,
+    vertex_type: int = 1,
+    bad_poly_ref: bool = False,
+) -> bytes:
+    """A GfxObj holding a box: 8 vertices (one UV each), 6 one-sided polygons and a physics BSP
+    of the retail shape: a chain of ``BPnN`` nodes, one per face plane, each with an empty
+    ``LEAF`` on its positive (outside) side, ending in a solid ``LEAF`` holding all 6 faces.
+    Flag 2's drawing data (never read by acphys) is stood in for by filler bytes."""
+    center = [(a + b) / 2 for a, b in zip(lo, hi, strict=True)]
+    radius = sum((b - a) ** 2 for a, b in zip(lo, hi, strict=True)) ** 0.5 / 2
+    sphere = struct.pack("<4f", *center, radius)
+    raw = struct.pack("<II", gfxobj_id, flags)
+    raw += compressed_u32(1) + struct.pack("<I", 0x08000001)  # one surface
+    raw += struct.pack("<iI", vertex_type, 8)
+    for i in range(8):
+        # vert_id, one UV; position; a normal; the UV
+        raw += struct.pack("<2H", i, 1) + struct.pack("<3f", *box_corner(i, lo, hi))
+        raw += struct.pack("<3f", 0.0, 0.0, 1.0) + struct.pack("<2f", 0.5, 0.5)
+    if flags & 1:
+        raw += compressed_u32(6)
+        for n, (ids, _axis, _sign) in enumerate(BOX_FACES):
+            # Face 2 stores no UV indices (stippling 4); the rest store one byte per point.
+            stippling = 4 if n == 2 else 0
+            raw += struct.pack("<HBBi2H", n, 4, stippling, 0, 0, 0) + struct.pack("<4H", *ids)
+            raw += b"" if stippling else bytes(4)
+        for n, (_ids, axis, sign) in enumerate(BOX_FACES):
+            normal = [0.0, 0.0, 0.0]
+            normal[axis] = sign
+            d = -(hi[axis] if sign > 0 else -lo[axis])
+            raw += struct.pack("<I", type_tag("BPnN")) + struct.pack("<4f", *normal, d)
+            raw += struct.pack("<IiI", type_tag("LEAF"), n, 0) + struct.pack("<4f", *center, 0.0)
+            raw += struct.pack("<I", 0)  # empty leaf: no polygons
+        refs = [0, 1, 2, 3, 4, 9 if bad_poly_ref else 5]
+        raw += struct.pack("<IiI", type_tag("LEAF"), 6, 1) + sphere + struct.pack("<I6H", 6, *refs)
+        raw += sphere * 6  # the six nodes' spheres, written after their children
+    raw += struct.pack("<3f", *center)  # sort centre
+    if flags & 2:
+        raw += b"\xdd" * 24
+    return raw
+
+
+def type_tag(name: str) -> int:
+    """A BSP node tag as the dword the DAT stores (``'LEAF'`` reads 0x4C454146)."""
+    return int.from_bytes(name.encode("ascii"), "big")
+
+
+def box_setup_record(setup_id: int = BOX_SETUP_ID, parts: Sequence[int] = (BOX_GFXOBJ_ID,)) -> bytes:
+    """A static object's setup: flags 8 (HAS_PHYSICS_BSP), ``parts``, one identity placement
+    frame, no spheres."""
+    identity = struct.pack("<7f", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0)
+    raw = struct.pack("<III", setup_id, 0x8, len(parts)) + struct.pack(f"<{len(parts)}I", *parts)
+    raw += struct.pack("<II", 0, 0)  # holding locations, connection points
+    raw += struct.pack("<II", 1, 0x65) + identity * len(parts) + struct.pack("<I", 0)
+    raw += struct.pack("<II", 0, 0)  # cylspheres, spheres
+    raw += struct.pack("<4f", 2.5, 20.0, 0.0, 0.0)
+    raw += struct.pack("<8f", 0, 0, 1.25, 20.2, 0, 0, 1.25, 20.2)  # sorting, selection spheres
+    raw += struct.pack("<I5I", 0, 0, 0, 0, 0, 0)  # lights, default ids
+    return raw
+
+
+# -- animations (0x03xxxxxx) and motion tables (0x09xxxxxx) -----------------------------------
+
+
+def frame_bytes(
+    origin: tuple[float, float, float] = (0.0, 0.0, 0.0), quat: tuple[float, ...] = (1, 0, 0, 0)
+) -> bytes:
+    """An ``AFrame``: origin x y z, then qw qx qy qz."""
+    return struct.pack("<7f", *origin, *quat)
+
+
+def hook_bytes(kind: int, direction: int, body: bytes = b"") -> bytes:
+    """A hook: type, direction (signed), the type's fields, zero padding to a dword."""
+    raw = struct.pack("<Ii", kind, direction) + body
+    return raw + b"\0" * (-len(raw) % 4)
+
+
+def animation_record(
+    anim_id: int,
+    part_frames: Sequence[Sequence[bytes]],
+    pos_frames: Sequence[bytes] | None = None,
+    hooks: dict[int, list[bytes]] | None = None,
+    flags: int | None = None,
+) -> bytes:
+    """A ``CAnimation``: DID, flags (bit 0: position frames present), part count, frame count,
+    [one position frame per frame], then per frame its part frames, hook count and hooks."""
+    hooks = hooks or {}
+    num_parts = len(part_frames[0]) if part_frames else 0
+    if flags is None:
+        flags = 1 if pos_frames is not None else 0
+    raw = struct.pack("<4I", anim_id, flags, num_parts, len(part_frames))
+    if pos_frames is not None:
+        raw += b"".join(pos_frames)
+    for index, parts in enumerate(part_frames):
+        frame_hooks = hooks.get(index, [])
+        raw += b"".join(parts) + struct.pack("<I", len(frame_hooks)) + b"".join(frame_hooks)
+    return raw
+
+
+def motion_data_bytes(
+    key: int,
+    anims: Sequence[tuple[int, int, int, float]] = (),
+    bitfield: int = 0,
+    velocity: tuple[float, float, float] | None = None,
+    omega: tuple[float, float, float] | None = None,
+) -> bytes:
+    """A keyed ``MotionData``: key, anim count, bitfield and vector-flag bytes, one pad byte,
+    the AnimData {anim id, low frame, high frame, framerate}, then velocity and omega when
+    flagged (flag bits 1 and 2)."""
+    flags = (1 if velocity is not None else 0) | (2 if omega is not None else 0)
+    raw = struct.pack("<IBBBx", key, len(anims), bitfield, flags)
+    raw += b"".join(struct.pack("<Iiif", *anim) for anim in anims)
+    if velocity is not None:
+        raw += struct.pack("<3f", *velocity)
+    if omega is not None:
+        raw += struct.pack("<3f", *omega)
+    return raw
+
+
+def motion_table_record(
+    table_id: int,
+    default_style: int,
+    style_defaults: dict[int, int],
+    cycles: Sequence[bytes],
+    modifiers: Sequence[bytes] = (),
+    links: dict[int, Sequence[bytes]] | None = None,
+) -> bytes:
+    """A ``CMotionTable``: DID, default style, style defaults {style, substate}, cycles and
+    modifiers (count + keyed MotionData each), links (count, then {key, count, keyed MotionData})."""
+    links = links or {}
+    raw = struct.pack("<III", table_id, default_style, len(style_defaults))
+    raw += b"".join(struct.pack("<II", style, sub) for style, sub in style_defaults.items())
+    raw += struct.pack("<I", len(cycles)) + b"".join(cycles)
+    raw += struct.pack("<I", len(modifiers)) + b"".join(modifiers)
+    raw += struct.pack("<I", len(links))
+    for key, inner in links.items():
+        raw += struct.pack("<II", key, len(inner)) + b"".join(inner)
+    return raw

@@ -220,8 +220,9 @@ def test_data_needed_but_not_given(dats: Path) -> None:
     fails(dats, BOTH_DATA + CELL_LANDBLOCK + 'water = "all"\n', "landblock[0].water", "only with height")
 
 
-def test_a_setup_with_a_physics_bsp_is_refused(dats: Path) -> None:
-    """``CSetup`` flag 8 (HAS_PHYSICS_BSP): the BSP is on the parts' GfxObjs, not read yet."""
+def test_a_setup_with_a_physics_bsp_it_cannot_place_is_refused(dats: Path) -> None:
+    """``CSetup`` flag 8 (HAS_PHYSICS_BSP) on a setup whose parts acphys cannot place as one physics
+    tree in the body frame (here: no single GfxObj part) is refused by name."""
     simple_dat(dats, {SETUP_ID: setup_record(flags=0x8)}, name="bsp.dat")
     fails(dats, '[data]\nportal = "bsp.dat"\n', "body[0].setup", "has a physics BSP")
 

@@ -1,9 +1,12 @@
 """Reading the user's retail DAT files: the container (:mod:`acphys.dat.container`) and the
-records acphys needs (:mod:`acphys.dat.records`)."""
+records acphys needs: setups, the region and landblocks (:mod:`acphys.dat.records`), GfxObj
+physics trees (:mod:`acphys.dat.gfxobj`), animations and motion tables (:mod:`acphys.dat.motion`)."""
 
 from __future__ import annotations
 
 from acphys.dat.container import DatEntry, DatError, DatFile, DatHeader, DatNode
+from acphys.dat.gfxobj import GfxObjRecord, setup_physics_bsp, unpack_gfxobj
+from acphys.dat.motion import unpack_animation, unpack_motion_table
 from acphys.dat.records import (
     REGION_ID,
     LandBlockRecord,
@@ -22,11 +25,16 @@ __all__ = [
     "DatFile",
     "DatHeader",
     "DatNode",
+    "GfxObjRecord",
     "LandBlockRecord",
     "RegionRecord",
     "SetupRecord",
     "landblock_terrain",
+    "setup_physics_bsp",
+    "unpack_animation",
+    "unpack_gfxobj",
     "unpack_landblock",
+    "unpack_motion_table",
     "unpack_region",
     "unpack_setup",
 ]

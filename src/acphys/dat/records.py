@@ -12,6 +12,7 @@ import struct
 from dataclasses import dataclass
 
 from acphys.dat.container import DatError
+from acphys.geometry.bsp import BSPTree
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
@@ -144,11 +145,12 @@ class SetupRecord:
     def has_physics_bsp(self) -> bool:
         return bool(self.flags & SETUP_HAS_PHYSICS_BSP)
 
-    def to_setup(self, name: str | None = None) -> Setup:
+    def to_setup(self, name: str | None = None, physics_bsp: BSPTree | None = None) -> Setup:
         """The physics view of this record as an :class:`acphys.setup.Setup`.
 
-        The physics BSP lives on the part's GfxObj and the motion table is a separate record;
-        acphys reads neither yet, so ``physics_bsp`` and ``motion_table`` are left unset.
+        The physics BSP lives on the part's GfxObj (read it with
+        :func:`acphys.dat.gfxobj.setup_physics_bsp` and pass it in); the motion table is a
+        separate record, left unset here.
         """
         return Setup(
             name=name if name is not None else f"{self.did:#010x}",
@@ -160,6 +162,7 @@ class SetupRecord:
             step_down_height=self.step_down_height,
             allow_free_heading=self.allow_free_heading,
             sorting_sphere=self.sorting_sphere.copy(),
+            physics_bsp=physics_bsp,
         )
 
 

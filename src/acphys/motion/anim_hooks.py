@@ -10,7 +10,8 @@ about sound, lights, textures, attacks, part swaps and a child's default
 script only record an event (``hook:<Kind>``) on the body, since acphys has
 no renderer, sound, weenie or child objects.
 
-Only data and ``Execute`` are ported; the DAT (un)packing is not.
+Data and ``Execute`` are ported here; reading hooks from a retail DAT is
+:func:`acphys.dat.motion.unpack_hook` (``CAnimHook::UnPackHook``).
 """
 
 from __future__ import annotations

@@ -284,8 +284,8 @@ def _count(*parts: MotionData | None) -> int:
 class MotionTable:
     """Retail ``CMotionTable`` (acclient.h:31654). See the module docstring for the four lookups.
 
-    The DAT loading (``CMotionTable::UnPack``) is not ported: tables are built
-    from Python data.
+    Tables are built from Python data, from scenario files, or from a retail
+    DAT by :func:`acphys.dat.motion.unpack_motion_table` (``CMotionTable::UnPack``).
     """
 
     __slots__ = ("cycles", "default_style", "links", "modifiers", "style_defaults")

@@ -91,8 +91,11 @@ SETUP_KEYS = (
 BUILTIN_SETUP_TABLES = {"human": "humanoid"}
 
 
-def _motion_table(ctx: Ctx, key: str, value: Any, tables: dict[str, MotionTable]) -> MotionTable | None:
-    """A motion table by name: one of the scenario's, a built-in one, or ``"none"``."""
+def _motion_table(
+    ctx: Ctx, key: str, value: Any, tables: dict[str, MotionTable], data: RetailData
+) -> MotionTable | None:
+    """A motion table by name: one of the scenario's, a built-in one, a portal DAT table id
+    (``"0x09000001"``), or ``"none"``."""
     name = read.string(ctx, key, value)
     if name == "none":
         return None
@@ -100,11 +103,14 @@ def _motion_table(ctx: Ctx, key: str, value: Any, tables: dict[str, MotionTable]
         return tables[name]
     if name in builtin_motion_tables():
         return builtin_motion_table(name)
-    known = ", ".join(["none", *builtin_motion_tables(), *tables])
+    dat_id = setup_id(name)
+    if dat_id is not None:
+        return data.motion_table(key, dat_id)
+    known = ", ".join(["none", *builtin_motion_tables(), *tables, "a DAT table id like '0x09000001'"])
     raise ctx.fail(key, f"no motion table named {name!r} (known: {known})")
 
 
-def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str, Setup]:
+def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: RetailData) -> dict[str, Setup]:
     if not isinstance(raw, dict):
         raise ctx.fail("setup", f"expected tables [setup.NAME], got {read.kind(raw)}")
     setups: dict[str, Setup] = {}
@@ -138,7 +144,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str
 
         motion_table = None
         if "motion_table" in table:
-            motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables)
+            motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
         setups[name] = Setup(
             name=name,
             spheres=spheres,
@@ -155,13 +161,18 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable]) -> dict[str
 
 
 def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
-    """A built-in setup; with a portal DAT the human is retail's setup 0x02000001."""
+    """A built-in setup; with a portal DAT the human is retail's setup 0x02000001, with the
+    motion table its record names when the portal holds that table (else ``humanoid``)."""
+    table = None
     if name == "human" and data.portal is not None:
         setup = data.setup(key, HUMAN_SETUP_ID, name)
+        table = data.default_motion_table(key, HUMAN_SETUP_ID)
     else:
         setup = BUILTIN_SETUPS[name]()
-    if name in BUILTIN_SETUP_TABLES:
-        setup.motion_table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
+    if table is None and name in BUILTIN_SETUP_TABLES:
+        table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
+    if table is not None:
+        setup.motion_table = table
     return setup
 
 
@@ -219,6 +230,7 @@ def _read_body(
     find_setup: SetupLookup,
     tables: dict[str, MotionTable],
     rooms: dict[int, list[EnvCell]],
+    data: RetailData,
 ) -> PhysicsObj:
     table = read.table(ctx, key, raw, BODY_KEYS)
     for required in ("name", "landblock", "origin"):
@@ -252,7 +264,7 @@ def _read_body(
         )
     motion_table = setup.motion_table
     if "motion_table" in table:
-        motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables)
+        motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
 
     frame = Frame.from_heading(origin, heading)
     body.enter_world(Position(cell_at(rooms, landblock, origin), frame))
@@ -308,10 +320,10 @@ def parse_scenario(
     header = _read_header(ctx, document.get("scenario", {}), default_name)
     tables = read_motion_tables(ctx, document.get("motion_table", {}))
     scripts = read_scripts(ctx, document.get("script", {}))
-    setups = _read_setups(ctx, document.get("setup", {}), tables)
 
     world = World(seed=header.seed)
     with read_data(ctx, document.get("data", {}), folder) as data:
+        setups = _read_setups(ctx, document.get("setup", {}), tables, data)
         read_landblocks(ctx, document.get("landblock", []), world, data)
         rooms = read_buildings(ctx, document.get("building", []), world)
         find_setup = _setup_lookup(ctx, setups, data)
@@ -321,7 +333,7 @@ def parse_scenario(
             raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
         bodies: list[PhysicsObj] = []
         for index, raw in enumerate(raw_bodies):
-            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms)
+            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms, data)
             if any(other.name == body.name for other in bodies):
                 raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
             if any(other.name == body.name for other in objects):

@@ -13,7 +13,12 @@ from types import TracebackType
 from typing import Any
 
 from acphys.dat import REGION_ID, DatError, DatFile, landblock_terrain, unpack_region, unpack_setup
+from acphys.dat.gfxobj import setup_physics_bsp
+from acphys.dat.motion import unpack_animation, unpack_motion_table
 from acphys.dat.records import SetupRecord
+from acphys.geometry.bsp import BSPTree
+from acphys.motion.animation import Animation
+from acphys.motion.motion_table import MotionTable
 from acphys.scenario import values as read
 from acphys.scenario.values import Ctx
 from acphys.setup import Setup
@@ -26,6 +31,9 @@ DATA_SETS = {"portal": 1, "cell": 2}
 HUMAN_SETUP_ID = 0x02000001
 #: The id high byte of setup records.
 SETUP_ID_TYPE = 0x02
+#: The id high bytes of motion-table and animation records.
+MOTION_TABLE_ID_TYPE = 0x09
+ANIMATION_ID_TYPE = 0x03
 
 
 class RetailData:
@@ -41,6 +49,10 @@ class RetailData:
         self.cell = cell
         self._height_table: tuple[float, ...] | None = None
         self._setups: dict[int, SetupRecord] = {}
+        #: Each setup's physics BSP (from its part's GfxObj), shared by the setups built from it.
+        self._physics_bsps: dict[int, BSPTree | None] = {}
+        self._animations: dict[int, Animation] = {}
+        self._motion_tables: dict[int, MotionTable] = {}
 
     def __enter__(self) -> RetailData:
         return self
@@ -91,14 +103,59 @@ class RetailData:
                 raise self.ctx.fail(
                     key, f"{self.portal.path}: record {setup_id:#010x} holds setup {record.did:#010x}"
                 )
-            if record.has_physics_bsp:
-                raise self.ctx.fail(
-                    key,
-                    f"setup {setup_id:#010x} has a physics BSP (on its parts' GfxObjs), which acphys "
-                    "does not read yet",
-                )
+            try:
+                self._physics_bsps[setup_id] = setup_physics_bsp(record, self.portal)
+            except DatError as error:
+                raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
             self._setups[setup_id] = record
-        return record.to_setup(name)
+        return record.to_setup(name, self._physics_bsps[setup_id])
+
+    def motion_table(self, key: str, table_id: int) -> MotionTable:
+        """The portal's motion table ``table_id`` with its animations (both kept once read;
+        bodies share the table, as retail bodies share the cached ``CMotionTable``)."""
+        if self.portal is None:
+            raise self.ctx.fail(
+                key, f"motion table {table_id:#010x} is a DAT table: it needs a [data] portal"
+            )
+        if table_id >> 24 != MOTION_TABLE_ID_TYPE:
+            raise self.ctx.fail(key, f"{table_id:#010x} is not a motion table id (they are 0x09xxxxxx)")
+        table = self._motion_tables.get(table_id)
+        if table is None:
+            portal = self.portal
+            data = self._record(key, portal, table_id, "motion table")
+
+            def load_animation(anim_id: int) -> Animation:
+                animation = self._animations.get(anim_id)
+                if animation is None:
+                    if anim_id >> 24 != ANIMATION_ID_TYPE:
+                        raise DatError(
+                            f"motion table {table_id:#010x}: {anim_id:#010x} is not an animation id"
+                        )
+                    if portal.lookup(anim_id) is None:
+                        raise DatError(f"motion table {table_id:#010x}: no animation {anim_id:#010x}")
+                    animation = unpack_animation(portal.read(anim_id))
+                    self._animations[anim_id] = animation
+                return animation
+
+            try:
+                table = unpack_motion_table(data, load_animation)
+            except DatError as error:
+                raise self.ctx.fail(key, f"{portal.path}: {error}") from None
+            self._motion_tables[table_id] = table
+        return table
+
+    def default_motion_table(self, key: str, setup_id: int) -> MotionTable | None:
+        """The motion table setup ``setup_id`` names (``default_mtable_id``), or None when it
+        names none (id 0) or the portal holds no such record."""
+        self.setup(key, setup_id)
+        table_id = self._setups[setup_id].default_mtable_id
+        assert self.portal is not None  # self.setup needs it
+        try:
+            if table_id == 0 or self.portal.lookup(table_id) is None:
+                return None
+        except DatError as error:
+            raise self.ctx.fail(key, str(error)) from None
+        return self.motion_table(key, table_id)
 
     def landblock(self, key: str, landblock: int) -> LandBlockStruct:
         """Landblock ``0xXXYY``'s terrain: record 0xXXYYFFFF of the cell DAT, its height bytes

@@ -124,12 +124,13 @@ def landblock_record(
     landblock_id: int = LANDBLOCK_ID,
     terrain: Sequence[int] | None = None,
     heights: Sequence[int] | None = None,
+    lbi_exists: int = 1,
 ) -> bytes:
-    """A landblock record: DID, lbi_exists 1, 81 terrain words, 81 height bytes, padding."""
+    """A landblock record: DID, ``lbi_exists``, 81 terrain words, 81 height bytes, padding."""
     if terrain is None:
         terrain = [(i % 32) << 2 for i in range(81)]
     height_bytes = bytes((i * 3) % 256 for i in range(81)) if heights is None else bytes(heights)
-    raw = struct.pack("<II", landblock_id, 1) + struct.pack("<81H", *terrain) + height_bytes
+    raw = struct.pack("<II", landblock_id, lbi_exists) + struct.pack("<81H", *terrain) + height_bytes
     return raw + b"\0" * (-len(raw) % 4)
 
 
@@ -325,4 +326,53 @@ def motion_table_record(
     raw += struct.pack("<I", len(links))
     for key, inner in links.items():
         raw += struct.pack("<II", key, len(inner)) + b"".join(inner)
+    return raw
+
+
+# -- landblock info (0xXXYYFFFE, cell DAT) ----------------------------------------------------
+
+LANDBLOCK_INFO_ID = 0xA9B4FFFE
+
+
+def stab_bytes(
+    object_id: int, origin: tuple[float, float, float], quat: tuple[float, ...] = (1, 0, 0, 0)
+) -> bytes:
+    """One static object of a landblock info: its DID, then its frame (origin, qw qx qy qz)."""
+    return struct.pack("<I", object_id) + frame_bytes(origin, quat)
+
+
+def bld_portal_bytes(flags: int, other_cell: int, other_portal: int, stabs: Sequence[int]) -> bytes:
+    """A ``CBldPortal``: u16 flags, u16 other cell number, i16 other portal, u16 stab count,
+    the u16 stabs, then zero padding to a dword (2 bytes after an odd stab count)."""
+    raw = struct.pack("<HHhH", flags, other_cell, other_portal, len(stabs))
+    raw += struct.pack(f"<{len(stabs)}H", *stabs)
+    return raw + b"\0" * (-len(raw) % 4)
+
+
+def build_info_bytes(
+    model_id: int, origin: tuple[float, float, float], num_leaves: int, portals: Sequence[bytes]
+) -> bytes:
+    """A ``BuildInfo``: model DID, frame (identity rotation), leaf count, portal count, portals."""
+    raw = struct.pack("<I", model_id) + frame_bytes(origin)
+    return raw + struct.pack("<II", num_leaves, len(portals)) + b"".join(portals)
+
+
+def landblock_info_record(
+    info_id: int = LANDBLOCK_INFO_ID,
+    num_cells: int = 0,
+    objects: Sequence[bytes] = (),
+    buildings: Sequence[bytes] = (),
+    restrictions: Sequence[tuple[int, int]] | None = None,
+    buckets: int = 8,
+) -> bytes:
+    """A ``CLandBlockInfo``: DID, cell count, object count and objects, one dword of building
+    count (low 16 bits) and pack mask (high 16: bit 0 when ``restrictions`` is given), the
+    buildings, then the restriction table: a dword of count (low 16) and ``buckets`` (high 16),
+    and the {cell id, object iid} pairs in the given order."""
+    raw = struct.pack("<III", info_id, num_cells, len(objects)) + b"".join(objects)
+    pack_mask = 0 if restrictions is None else 1
+    raw += struct.pack("<HH", len(buildings), pack_mask) + b"".join(buildings)
+    if restrictions is not None:
+        raw += struct.pack("<HH", len(restrictions), buckets)
+        raw += b"".join(struct.pack("<II", cell, iid) for cell, iid in restrictions)
     return raw

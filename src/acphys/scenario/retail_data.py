@@ -1,5 +1,5 @@
 """Scenario ``[data]``: the user's retail DAT files, as a source of setups, the region's land
-height table and landblock terrain.
+height table, landblock terrain and landblock static objects.
 
 Not retail routines: the scenario keys are acphys's (README "Scenarios"); the records are read
 with :mod:`acphys.dat`. Every problem, including a damaged DAT file, is a one-line
@@ -12,11 +12,14 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from acphys.dat import REGION_ID, DatError, DatFile, landblock_terrain, unpack_region, unpack_setup
-from acphys.dat.gfxobj import setup_physics_bsp
+from acphys.dat import REGION_ID, DatError, DatFile, unpack_landblock, unpack_region, unpack_setup
+from acphys.dat.gfxobj import GfxObjRecord, setup_physics_bsp, unpack_gfxobj
+from acphys.dat.landblock_info import LandBlockInfoRecord, unpack_landblock_info
 from acphys.dat.motion import unpack_animation, unpack_motion_table
 from acphys.dat.records import SetupRecord
 from acphys.geometry.bsp import BSPTree
+from acphys.geometry.sphere import Sphere
+from acphys.math.vector import Vector3
 from acphys.motion.animation import Animation
 from acphys.motion.motion_table import MotionTable
 from acphys.scenario import values as read
@@ -34,6 +37,9 @@ SETUP_ID_TYPE = 0x02
 #: The id high bytes of motion-table and animation records.
 MOTION_TABLE_ID_TYPE = 0x09
 ANIMATION_ID_TYPE = 0x03
+#: ``MasterDBMap::DivineType`` ranges of the two record types a static object's DID may name.
+GFXOBJ_IDS = range(0x01000000, 0x01010000)
+SETUP_IDS = range(0x02000000, 0x02010000)
 
 
 class RetailData:
@@ -53,6 +59,9 @@ class RetailData:
         self._physics_bsps: dict[int, BSPTree | None] = {}
         self._animations: dict[int, Animation] = {}
         self._motion_tables: dict[int, MotionTable] = {}
+        self._gfxobjs: dict[int, GfxObjRecord] = {}
+        #: Each read landblock's ``lbi_exists``.
+        self._lbi_exists: dict[int, int] = {}
 
     def __enter__(self) -> RetailData:
         return self
@@ -170,14 +179,90 @@ class RetailData:
         block_id = (landblock << 16) | 0xFFFF
         data = self._record(key, self.cell, block_id, "landblock")
         try:
-            terrain = landblock_terrain(data, table)
+            record = unpack_landblock(data)
+            terrain = record.to_struct(table)
         except DatError as error:
             raise self.ctx.fail(key, f"{self.cell.path}: {error}") from None
         if terrain.block_id != block_id:
             raise self.ctx.fail(
                 key, f"{self.cell.path}: record {block_id:#010x} holds landblock {terrain.block_id:#010x}"
             )
+        self._lbi_exists[landblock] = record.lbi_exists
         return terrain
+
+    def landblock_info(self, key: str, landblock: int) -> LandBlockInfoRecord | None:
+        """Landblock ``0xXXYY``'s objects and buildings (record 0xXXYYFFFE), or None when its
+        landblock record says there is none (``lbi_exists`` 0, as ``CLandBlock::InitLoad``
+        reads it) or the cell DAT holds no such record. Retail fails to load a landblock whose
+        ``lbi_exists`` names a missing record; acphys loads its terrain without objects."""
+        if self.cell is None:
+            raise self.ctx.fail(key, "landblock objects from the DAT need a [data] cell")
+        if landblock not in self._lbi_exists:
+            self.landblock(key, landblock)
+        info_id = (landblock << 16) | 0xFFFE
+        try:
+            missing = self.cell.lookup(info_id) is None
+        except DatError as error:
+            raise self.ctx.fail(key, str(error)) from None
+        if not self._lbi_exists[landblock] or missing:
+            return None
+        data = self._record(key, self.cell, info_id, "landblock info")
+        try:
+            info = unpack_landblock_info(data)
+        except DatError as error:
+            raise self.ctx.fail(key, f"{self.cell.path}: {error}") from None
+        if info.did != info_id:
+            raise self.ctx.fail(
+                key, f"{self.cell.path}: record {info_id:#010x} holds landblock info {info.did:#010x}"
+            )
+        return info
+
+    def object_setup(self, key: str, object_id: int) -> Setup | None:
+        """The physics view of a static object's DID, as ``CPhysicsObj::InitPartArrayObject``
+        makes it: a setup record (0x02000000-0x0200FFFF), or a GfxObj (0x01000000-0x0100FFFF)
+        in a one-part setup (``CSetup::makeSimpleSetup``). None for DIDs of other types, of
+        which retail's ``makeObject`` makes nothing. A DID with a zero high byte (retail's
+        translucent ethereal "anim object" of setup ``0x02000000 | id``) is refused."""
+        if object_id in SETUP_IDS:
+            return self.setup(key, object_id)
+        if object_id in GFXOBJ_IDS:
+            return self.gfxobj_setup(key, object_id)
+        if object_id >> 24 == 0:
+            raise self.ctx.fail(
+                key,
+                f"static object {object_id:#010x} is an anim object (setup {object_id | 0x02000000:#010x} "
+                "made translucent and ethereal); acphys does not make anim objects",
+            )
+        return None
+
+    def gfxobj_setup(self, key: str, gfxobj_id: int) -> Setup:
+        """GfxObj ``gfxobj_id`` of the portal DAT as a one-part setup: its physics BSP, and its
+        physics sphere as the sorting sphere. Retail falls back to the drawing sphere for a
+        GfxObj without physics data; acphys does not read drawing data, so such an object gets
+        a zero sorting sphere at the origin (it has no collision shape either way).
+
+        Retail: CSetup::makeSimpleSetup @ 0x00520090 (acclient.c:334455)
+        """
+        if self.portal is None:
+            raise self.ctx.fail(key, f"gfxobj {gfxobj_id:#010x} is a DAT model: it needs a [data] portal")
+        record = self._gfxobjs.get(gfxobj_id)
+        if record is None:
+            data = self._record(key, self.portal, gfxobj_id, "gfxobj")
+            try:
+                record = unpack_gfxobj(data)
+            except DatError as error:
+                raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
+            if record.did != gfxobj_id:
+                raise self.ctx.fail(
+                    key, f"{self.portal.path}: record {gfxobj_id:#010x} holds gfxobj {record.did:#010x}"
+                )
+            self._gfxobjs[gfxobj_id] = record
+        sphere = record.physics_sphere
+        return Setup(
+            name=f"{gfxobj_id:#010x}",
+            physics_bsp=record.physics_bsp,
+            sorting_sphere=sphere.copy() if sphere is not None else Sphere(Vector3(), 0.0),
+        )
 
 
 def setup_id(name: str) -> int | None:

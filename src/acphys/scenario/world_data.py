@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import Any
 
 from acphys.constants import BLOCK_LENGTH
+from acphys.dat.landblock_info import init_static_objs
 from acphys.geometry.bsp import BSPTree
 from acphys.geometry.bsp_builder import box_faces, build_convex_tree, build_union_tree
 from acphys.geometry.polygon import Polygon
@@ -79,8 +80,10 @@ def _water(ctx: Ctx, key: str, value: Any) -> list[int]:
 def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
     """Add each ``[[landblock]]`` to ``world``: flat ``height``, ``heights`` through a
     ``height_table`` (the portal DAT's region table when it has none), or with only ``id`` the
-    cell DAT's terrain; ``water`` as terrain words."""
+    cell DAT's terrain and static objects (placed once every landblock is in); ``water`` as
+    terrain words."""
     seen: set[int] = set()
+    from_dat: list[tuple[str, int, LandBlock]] = []
     for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
         key = f"landblock[{index}]"
         entry = read.table(ctx, key, item, LANDBLOCK_KEYS)
@@ -118,7 +121,9 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
                         f"{key}.{extra}",
                         "only with height or heights (a landblock from the cell DAT has its own terrain)",
                     )
-            world.add_landblock(LandBlock(data.landblock(f"{key}.id", landblock)))
+            block = LandBlock(data.landblock(f"{key}.id", landblock))
+            world.add_landblock(block)
+            from_dat.append((f"{key}.id", landblock, block))
             continue
         else:
             raise ctx.fail(
@@ -130,6 +135,10 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
         world.add_landblock(
             LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, height_bytes, words, table))
         )
+    for key, landblock, block in from_dat:
+        info = data.landblock_info(key, landblock)
+        if info is not None:
+            init_static_objs(world, block, info, lambda object_id, key=key: data.object_setup(key, object_id))
 
 
 # -- solid setups -----------------------------------------------------------------------------

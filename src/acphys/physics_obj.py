@@ -71,12 +71,19 @@ from acphys.constants import (
     SMALL_VELOCITY,
     float32,
 )
-from acphys.flags import DEFAULT_PHYSICS_STATE, STATIONARY_MASK, ObjectInfoState, PhysicsState, TransientState
+from acphys.flags import (
+    DEFAULT_PHYSICS_STATE,
+    STATIONARY_MASK,
+    ObjectInfoState,
+    PhysicsState,
+    TransientState,
+    member_namespace,
+)
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.frame import Frame
 from acphys.math.position import Position
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, zero_vector
 from acphys.part_array import PartArray
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.transition import Transition
@@ -88,8 +95,9 @@ if TYPE_CHECKING:
     from acphys.motion.weenie import Weenie
     from acphys.world.world import World
 
-PS = PhysicsState
-TS = TransientState
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransientState)
+OI = member_namespace(ObjectInfoState)
 
 #: Called after every ``update_object_internal`` with the body and the quantum integrated.
 StepObserver = Callable[["PhysicsObj", float], None]
@@ -123,14 +131,14 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         self.parent: PhysicsObj | None = None
 
         self.state: PhysicsState = DEFAULT_PHYSICS_STATE
-        self.transient_state: TransientState = TS(0)
+        self.transient_state: TransientState = TransientState(0)
         self.position = Position()
         self.cell: ObjCell | None = None
 
-        self.velocity = Vector3()
-        self.acceleration = Vector3()
-        self.omega = Vector3()
-        self.cached_velocity = Vector3()
+        self.velocity = zero_vector()
+        self.acceleration = zero_vector()
+        self.omega = zero_vector()
+        self.cached_velocity = zero_vector()
 
         self.friction = DEFAULT_FRICTION
         self.elasticity = DEFAULT_ELASTICITY
@@ -146,7 +154,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
 
         self.contact_plane = Plane()
         self.contact_plane_cell_id = 0
-        self.sliding_normal = Vector3()
+        self.sliding_normal = zero_vector()
 
         self.player_vector = Vector3(0.0, 0.0, 1.0)
         self.player_distance = math.inf
@@ -303,7 +311,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         """
         candidate.origin.set(self.position.frame.origin)
         self.set_frame(candidate)
-        self.cached_velocity = Vector3()
+        self.cached_velocity = zero_vector()
 
     def _align_heading(self, candidate: Frame) -> None:
         """``ALIGNPATH``: face the path; else ``SLEDDING`` with velocity: face the velocity.
@@ -365,7 +373,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
             self.calc_friction(quantum, velocity_mag2)
             v = self.velocity
             if velocity_mag2 - SMALL_VELOCITY * SMALL_VELOCITY < EPSILON:
-                v = self.velocity = Vector3()
+                v = self.velocity = zero_vector()
             origin = frame.origin
             origin.x = (quantum * v.x + a.x * 0.5 * quantum * quantum) + origin.x
             origin.y = (quantum * v.y + a.y * 0.5 * quantum * quantum) + origin.y
@@ -416,12 +424,12 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         """
         ts = self.transient_state
         if ts & TS.CONTACT and ts & TS.ON_WALKABLE and not self.state & PS.SLEDDING:
-            self.acceleration = Vector3()
-            self.omega = Vector3()
+            self.acceleration = zero_vector()
+            self.omega = zero_vector()
         elif self.state & PS.GRAVITY:
             self.acceleration = Vector3(0.0, 0.0, GRAVITY)
         else:
-            self.acceleration = Vector3()
+            self.acceleration = zero_vector()
 
     def set_on_walkable(self, is_on_walkable: bool) -> None:
         """Set ``ON_WALKABLE``; tell the movement manager on landing and leaving; recompute acceleration.
@@ -458,8 +466,9 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
 
         Retail: CPhysicsObj::set_frame @ 0x00514090 (acclient.c:321327)
         """
-        committed = frame.copy()
-        if not committed.is_valid() and committed.is_valid_except_for_heading():
+        committed = frame
+        if not frame.is_valid() and frame.is_valid_except_for_heading():
+            committed = frame.copy()  # only this case changes it, and the caller's frame stays as it was
             committed.qw = committed.qx = committed.qy = committed.qz = 0.0
         self.position.frame.assign(committed)
         if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
@@ -507,15 +516,15 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
 
         Retail: CPhysicsObj::get_object_info @ 0x00511CC0 (acclient.c:319073)
         """
-        state = ObjectInfoState.EDGE_SLIDE if self.state & PS.EDGE_SLIDE else ObjectInfoState.DEFAULT
+        state = OI.EDGE_SLIDE if self.state & PS.EDGE_SLIDE else OI.DEFAULT
         if not admin_move:
             if self.transient_state & TS.CONTACT:
                 is_water = bool(self.transient_state & TS.WATER_CONTACT)
                 if self.check_contact(True):
                     transit.init_contact_plane(self.contact_plane_cell_id, self.contact_plane, is_water)
-                    state |= ObjectInfoState.CONTACT
+                    state |= OI.CONTACT
                     if self.transient_state & TS.ON_WALKABLE:
-                        state |= ObjectInfoState.ON_WALKABLE
+                        state |= OI.ON_WALKABLE
                 else:
                     transit.init_last_known_contact_plane(
                         self.contact_plane_cell_id, self.contact_plane, is_water
@@ -523,9 +532,9 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
             if self.transient_state & TS.SLIDING:
                 transit.init_sliding_normal(self.sliding_normal)
         if self.part_array is not None and self.part_array.allows_free_heading():
-            state |= ObjectInfoState.FREE_ROTATE
+            state |= OI.FREE_ROTATE
         if self.state & PS.MISSILE:
-            state |= ObjectInfoState.PATH_CLIPPED
+            state |= OI.PATH_CLIPPED
         return state
 
     def check_contact(self, contact: bool) -> bool:
@@ -633,7 +642,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         if frames <= 1:
             if apply_bounce and collisions.collision_normal_valid:
                 if self.state & PS.INELASTIC:
-                    self.velocity = Vector3()
+                    self.velocity = zero_vector()
                 else:
                     n = collisions.collision_normal
                     v = self.velocity
@@ -644,7 +653,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
                         v.y = impulse * n.y + v.y
                         v.z = impulse * n.z + v.z
         else:
-            self.velocity = Vector3()
+            self.velocity = zero_vector()
         if frames in (0, 3):
             self.transient_state &= ~STATIONARY_MASK
         elif frames == 1:

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from acphys.constants import float32
-from acphys.flags import ObjectInfoState, PhysicsState, TransientState
+from acphys.flags import ObjectInfoState, PhysicsState, TransientState, member_namespace
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.cell_id import adjust_to_outside, is_outdoor
 from acphys.math.frame import Frame
@@ -20,8 +20,8 @@ if TYPE_CHECKING:
     from acphys.world.env_cell import EnvCell
     from acphys.world.world import World
 
-PS = PhysicsState
-TS = TransientState
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransientState)
 
 
 def _find_visible_child_cell(

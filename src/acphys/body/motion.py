@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from acphys.flags import PhysicsState, TransientState
+from acphys.flags import PhysicsState, TransientState, member_namespace
 from acphys.math.position import Position
 from acphys.motion.movement import MovementError, MovementParameters, MovementStruct, MovementType
 
@@ -13,8 +13,8 @@ if TYPE_CHECKING:
     from acphys.motion.motion_table import MotionTable
     from acphys.motion.movement_manager import MovementManager
 
-PS = PhysicsState
-TS = TransientState
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransientState)
 
 
 class Motion:

@@ -7,7 +7,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState
+from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState, member_namespace
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.vector import Vector3
 from acphys.transition.transition import Transition
@@ -16,8 +16,10 @@ if TYPE_CHECKING:
     from acphys.geometry.sphere import SphereTransition
     from acphys.physics_obj import PhysicsObj
 
-PS = PhysicsState
-TS = TransientState
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransientState)
+OI = member_namespace(ObjectInfoState)
+TR = member_namespace(TransitionState)
 
 
 class CollisionKind(enum.Enum):
@@ -348,50 +350,50 @@ class CollisionReports:
         """
         state = self.state
         if state & PS.ETHEREAL and state & PS.IGNORE_COLLISIONS:
-            return TransitionState.OK
+            return TR.OK
         path = transition.sphere_path
         info = transition.object_info
         weenie = self.weenie_obj
-        if weenie is not None and info.state & ObjectInfoState.IS_VIEWER and weenie.is_creature():
-            return TransitionState.OK
+        if weenie is not None and info.state & OI.IS_VIEWER and weenie.is_creature():
+            return TR.OK
         ethereal = bool(state & PS.ETHEREAL or (info.ethereal and not state & PS.STATIC))
         if ethereal and path.step_down:
-            return TransitionState.OK
+            return TR.OK
         path.obstruction_ethereal = ethereal
         exempt = (
             weenie is not None
             and weenie.is_player()
-            and bool(info.state & ObjectInfoState.IS_PLAYER)
-            and not info.state & ObjectInfoState.IS_IMPENETRABLE
+            and bool(info.state & OI.IS_PLAYER)
+            and not info.state & OI.IS_IMPENETRABLE
             and not weenie.is_impenetrable()
-            and not (info.state & ObjectInfoState.IS_PK and weenie.is_pk())
-            and not (info.state & ObjectInfoState.IS_PKLITE and weenie.is_pk_lite())
+            and not (info.state & OI.IS_PK and weenie.is_pk())
+            and not (info.state & OI.IS_PKLITE and weenie.is_pk_lite())
         )
         is_creature = bool(state & PS.MISSILE) or (weenie is not None and weenie.is_creature())
         parts = self.part_array
-        result = TransitionState.OK
+        result = TR.OK
         if state & PS.HAS_PHYSICS_BSP and not exempt and not info.missile_ignore(self):
             if parts is not None:
                 result = parts.find_obj_collisions(transition)
         elif parts is not None and parts.get_num_cylsphere() and not exempt and not info.missile_ignore(self):
             for cylsphere in parts.get_cylsphere():
                 result = cylsphere.intersects_sphere_placed(self.position, self.scale, transition)
-                if result != TransitionState.OK:
+                if result != TR.OK:
                     break
         elif parts is not None and parts.get_num_sphere() and not exempt and not info.missile_ignore(self):
             for sphere in parts.get_sphere():
                 result = sphere.intersects_sphere_placed(self.position, self.scale, transition, is_creature)
-                if result != TransitionState.OK:
+                if result != TR.OK:
                     break
-        if result != TransitionState.OK and not path.step_down:
+        if result != TR.OK and not path.step_down:
             collisions = transition.collision_info
             if state & PS.STATIC:
-                if not info.state & ObjectInfoState.CONTACT:
+                if not info.state & OI.CONTACT:
                     collisions.collided_with_environment = True
-            elif ethereal or (is_creature and info.state & ObjectInfoState.IGNORE_CREATURES):
-                result = TransitionState.OK
+            elif ethereal or (is_creature and info.state & OI.IGNORE_CREATURES):
+                result = TR.OK
                 collisions.collision_normal_valid = False
-                collisions.add_object(self, TransitionState.OK)
+                collisions.add_object(self, TR.OK)
             else:
                 collisions.add_object(self, result)
         path.obstruction_ethereal = False

@@ -19,7 +19,7 @@ import math
 from typing import TYPE_CHECKING
 
 from acphys.constants import LANDING_Z
-from acphys.flags import ObjectInfoState, TransitionState
+from acphys.flags import ObjectInfoState, TransitionState, member_namespace
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import get_block_offset
@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
 
-TS = TransitionState
+TS = member_namespace(TransitionState)
 
 #: ``SPHEREPATH::InsertType`` PLACEMENT (``acphys.transition.transition.InsertType``, not imported:
 #: the transition package imports the geometry package).

@@ -15,7 +15,7 @@ import math
 from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, LANDING_Z
-from acphys.flags import ObjectInfoState, TransitionState
+from acphys.flags import ObjectInfoState, TransitionState, member_namespace
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import get_block_offset
@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
 
-TS = TransitionState
+TS = member_namespace(TransitionState)
 
 #: ``SPHEREPATH::InsertType`` PLACEMENT (acclient.h:6160).
 _PLACEMENT = 1

@@ -6,7 +6,9 @@ from enum import IntEnum
 from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, zero_vector
+
+_new = object.__new__
 
 if TYPE_CHECKING:
     from acphys.geometry.bbox import BBox
@@ -41,7 +43,7 @@ class Plane:
     __slots__ = ("N", "d")
 
     def __init__(self, normal: Vector3 | None = None, d: float = 0.0) -> None:
-        self.N = normal.copy() if normal is not None else Vector3()
+        self.N = normal.copy() if normal is not None else zero_vector()
         self.d = float(d)
 
     @classmethod
@@ -58,7 +60,10 @@ class Plane:
         return cls(normal, -(point.z * normal.z + point.y * normal.y + point.x * normal.x))
 
     def copy(self) -> Plane:
-        return Plane(self.N, self.d)
+        plane = _new(Plane)
+        plane.N = self.N.copy()
+        plane.d = self.d
+        return plane
 
     def set(self, other: Plane) -> None:
         self.N.set(other.N)

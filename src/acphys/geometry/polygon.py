@@ -94,11 +94,12 @@ class Polygon:
 
         Retail: CPolygon::point_in_poly2D @ 0x00538060 (acclient.c:359419)
         """
+        px, py = point.x, point.y
         following = self.vertices[0]
         for vertex in reversed(self.vertices):
             ey = following.y - vertex.y
             ex = vertex.x - following.x
-            value = -(ey * vertex.x) - ex * vertex.y + ex * point.y + ey * point.x
+            value = -(ey * vertex.x) - ex * vertex.y + ex * py + ey * px
             if side:
                 if value < 0.0:
                     return False

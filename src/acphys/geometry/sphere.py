@@ -13,10 +13,12 @@ import math
 from typing import TYPE_CHECKING, Protocol
 
 from acphys.constants import EPSILON, LANDING_Z
-from acphys.flags import ObjectInfoState, TransitionState
+from acphys.flags import ObjectInfoState, TransitionState, member_namespace
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import get_block_offset
 from acphys.math.vector import Vector3
+
+_new = object.__new__
 
 if TYPE_CHECKING:
     from acphys.geometry.plane import Ray
@@ -25,7 +27,8 @@ if TYPE_CHECKING:
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
 
-TS = TransitionState
+TS = member_namespace(TransitionState)
+OI = member_namespace(ObjectInfoState)
 
 #: ``timecheck < -0.1`` bound on the interpolation a step-down or landing may rewind to.
 _MIN_WALK_INTERP = -0.1
@@ -62,8 +65,17 @@ class Sphere:
         self.center = center.copy()
         self.radius = float(radius)
 
+    @classmethod
+    def owning(cls, center: Vector3, radius: float) -> Sphere:
+        """A sphere that takes ``center`` itself, uncopied: for a vector the caller has just
+        built and keeps no other reference to. ``radius`` must already be a float."""
+        sphere = _new(cls)
+        sphere.center = center
+        sphere.radius = radius
+        return sphere
+
     def copy(self) -> Sphere:
-        return Sphere(self.center, self.radius)
+        return Sphere.owning(self.center.copy(), self.radius)
 
     def __repr__(self) -> str:
         return f"Sphere({self.center!r}, {self.radius!r})"
@@ -146,7 +158,7 @@ class Sphere:
         check_pos = transition.sphere_path.check_pos
         center = p.frame.localtoglobal(self.center * scale)
         center = center + get_block_offset(check_pos.objcell_id, p.objcell_id)
-        return Sphere(center, self.radius * scale).intersects_sphere(transition, is_creature)
+        return Sphere.owning(center, self.radius * scale).intersects_sphere(transition, is_creature)
 
     def intersects_sphere(self, transition: SphereTransition, is_creature: bool) -> TransitionState:
         """Test the moving spheres (``global_sphere``) against this obstacle and respond.
@@ -191,14 +203,14 @@ class Sphere:
                 return TS.COLLIDED
             return TS.OK
         if not path.collide:
-            if obj.state & (ObjectInfoState.CONTACT | ObjectInfoState.ON_WALKABLE):
+            if obj.state & (OI.CONTACT | OI.ON_WALKABLE):
                 if self.collides_with_sphere(disp, radsum):
                     return self.step_sphere_up(transition, moving, disp, radsum)
                 if second is not None:
                     disp2 = second.center - self.center
                     if self.collides_with_sphere(disp2, radsum):
                         return self.slide_sphere(obj, path, collisions, second, disp2, radsum, 1)
-            elif obj.state & ObjectInfoState.PATH_CLIPPED:
+            elif obj.state & OI.PATH_CLIPPED:
                 if self.collides_with_sphere(disp, radsum):
                     return self.collide_with_point(obj, path, collisions, moving, disp, radsum, 0)
             else:
@@ -355,7 +367,7 @@ class Sphere:
         Retail: CSphere::collide_with_point @ 0x00537230 (acclient.c:358807)
         """
         curr = path.global_curr_center[sphere_num]
-        if not obj.state & ObjectInfoState.PERFECT_CLIP:
+        if not obj.state & OI.PERFECT_CLIP:
             normal = curr - self.center
             if not normal.normalize_check_small():
                 collisions.set_collision_normal(normal)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, CELLS_PER_BLOCK, EPSILON, MAX_LCOORD
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, zero_vector
 
 FIRST_ENV_CELL = 0x100
 LAST_LAND_CELL = 0x40
@@ -75,10 +75,15 @@ def gid_to_lcoord(cell_id: int) -> tuple[int, int] | None:
 
     Retail: LandDefs::gid_to_lcoord @ 0x00497A90 (acclient.c:209520)
     """
-    if not inbound_valid_cellid(cell_id) or not is_outdoor(cell_id):
+    # inbound_valid_cellid and is_outdoor, inlined: a land cell (1..0x40) of a block in the world
+    low = cell_id & 0xFFFF
+    if not 1 <= low <= LAST_LAND_CELL:
         return None
-    index = (cell_id & 0xFFFF) - 1
-    x = ((cell_id >> 21) & 0x7F8) + (index >> 3)
+    block_x = (cell_id >> 21) & 0x7F8
+    if block_x >= MAX_LCOORD or ((cell_id >> 13) & 0x7F8) >= MAX_LCOORD:
+        return None
+    index = low - 1
+    x = block_x + (index >> 3)
     y = 8 * ((cell_id >> 16) & 0xFF) + (index & 7)
     if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
         return x, y
@@ -158,7 +163,7 @@ def get_block_offset(cell_from: int, cell_to: int) -> Vector3:
     Retail: LandDefs::get_block_offset @ 0x0043E630 (acclient.c:123109)
     """
     if (cell_from >> 16) == (cell_to >> 16):
-        return Vector3()
+        return zero_vector()
     if not cell_to:
         raise ValueError("get_block_offset: the destination cell id is 0 (no cell)")
     fx, fy = ((cell_from >> 21) & 0x7F8, 8 * ((cell_from >> 16) & 0xFF)) if cell_from else (0, 0)

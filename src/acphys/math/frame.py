@@ -17,7 +17,18 @@ from __future__ import annotations
 import math
 
 from acphys.constants import EPSILON
-from acphys.math.vector import Vector3, compass_heading
+from acphys.math.vector import Vector3, compass_heading, zero_vector
+
+_new = object.__new__
+_isnan = math.isnan
+#: ``Frame::IsValid``'s tolerance on the quaternion's squared norm.
+_NORM_TOLERANCE = EPSILON * 5.0
+#: ``m`` for the identity quaternion (1, +0, +0, +0), as :meth:`Frame.cache` computes it.
+_IDENTITY_M = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+#: The default quaternion components, as objects: ``Frame()`` recognises an untouched
+#: default rotation by identity (``is``), so a passed-in -0.0 still goes through cache().
+_ONE = 1.0
+_ZERO = 0.0
 
 
 class Frame:
@@ -28,18 +39,24 @@ class Frame:
     def __init__(
         self,
         origin: Vector3 | None = None,
-        qw: float = 1.0,
-        qx: float = 0.0,
-        qy: float = 0.0,
-        qz: float = 0.0,
+        qw: float = _ONE,
+        qx: float = _ZERO,
+        qy: float = _ZERO,
+        qz: float = _ZERO,
     ) -> None:
-        self.origin = origin.copy() if origin is not None else Vector3()
-        self.qw = float(qw)
-        self.qx = float(qx)
-        self.qy = float(qy)
-        self.qz = float(qz)
-        self.m = [0.0] * 9
-        self.cache()
+        self.origin = origin.copy() if origin is not None else zero_vector()
+        if qw is _ONE and qx is _ZERO and qy is _ZERO and qz is _ZERO:
+            # the default rotation: skip the float() calls and cache()'s arithmetic
+            self.qw = 1.0
+            self.qx = self.qy = self.qz = 0.0
+            self.m = _IDENTITY_M.copy()  # what cache() gives for (1, +0, +0, +0)
+        else:
+            self.qw = float(qw)
+            self.qx = float(qx)
+            self.qy = float(qy)
+            self.qz = float(qz)
+            self.m = [0.0] * 9
+            self.cache()
 
     @classmethod
     def from_heading(cls, origin: Vector3, heading: float) -> Frame:
@@ -50,9 +67,12 @@ class Frame:
 
     def copy(self) -> Frame:
         """An independent copy, cached matrix included (retail ``Frame::operator=``)."""
-        other = Frame.__new__(Frame)
+        other = _new(Frame)
         other.origin = self.origin.copy()
-        other.qw, other.qx, other.qy, other.qz = self.qw, self.qx, self.qy, self.qz
+        other.qw = self.qw
+        other.qx = self.qx
+        other.qy = self.qy
+        other.qz = self.qz
         other.m = self.m.copy()
         return other
 
@@ -100,11 +120,12 @@ class Frame:
 
         Retail: Frame::IsValid @ 0x00534ED0 (acclient.c:357024)
         """
-        values = (self.origin.x, self.origin.y, self.origin.z, self.qw, self.qx, self.qy, self.qz)
-        if any(math.isnan(v) for v in values):
+        o = self.origin
+        qw, qx, qy, qz = self.qw, self.qx, self.qy, self.qz
+        if _isnan(o.x) or _isnan(o.y) or _isnan(o.z) or _isnan(qw) or _isnan(qx) or _isnan(qy) or _isnan(qz):
             return False
-        norm = self.qw * self.qw + self.qx * self.qx + self.qy * self.qy + self.qz * self.qz
-        return not (math.isnan(norm) or abs(norm - 1.0) > EPSILON * 5.0)
+        norm = qw * qw + qx * qx + qy * qy + qz * qz
+        return not (_isnan(norm) or abs(norm - 1.0) > _NORM_TOLERANCE)
 
     def is_equal(self, other: Frame) -> bool:
         """Origins within EPSILON on every axis (``<=``) and quaternions strictly within EPSILON
@@ -294,11 +315,11 @@ class Frame:
         Retail: Frame::localtoglobalvec @ 0x004524F0 (acclient.c:143658)
         """
         m = self.m
-        return Vector3(
-            m[6] * v.z + m[0] * v.x + m[3] * v.y,
-            m[7] * v.z + m[1] * v.x + m[4] * v.y,
-            m[8] * v.z + m[2] * v.x + m[5] * v.y,
-        )
+        r = _new(Vector3)
+        r.x = m[6] * v.z + m[0] * v.x + m[3] * v.y
+        r.y = m[7] * v.z + m[1] * v.x + m[4] * v.y
+        r.z = m[8] * v.z + m[2] * v.x + m[5] * v.y
+        return r
 
     def globaltolocalvec(self, v: Vector3) -> Vector3:
         """Rotate a global vector into local space (the transposed matrix).
@@ -317,7 +338,14 @@ class Frame:
 
         Retail: Frame::localtoglobal @ 0x00452620 (acclient.c:143701)
         """
-        return self.localtoglobalvec(p) + self.origin
+        # localtoglobalvec(p) + origin in one construction, the same sums in the same order
+        m = self.m
+        o = self.origin
+        v = _new(Vector3)
+        v.x = m[6] * p.z + m[0] * p.x + m[3] * p.y + o.x
+        v.y = m[7] * p.z + m[1] * p.x + m[4] * p.y + o.y
+        v.z = m[8] * p.z + m[2] * p.x + m[5] * p.y + o.z
+        return v
 
     def globaltolocal(self, p: Vector3) -> Vector3:
         """Take a global point to local space.

@@ -6,6 +6,8 @@ from acphys.math.cell_id import format_cell_id, get_block_offset
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 
+_new = object.__new__
+
 
 class Position:
     """Retail ``Position`` (acclient.h:30658): ``objcell_id`` plus a landblock-local frame."""
@@ -17,7 +19,10 @@ class Position:
         self.frame = frame.copy() if frame is not None else Frame()
 
     def copy(self) -> Position:
-        return Position(self.objcell_id, self.frame)
+        other = _new(Position)
+        other.objcell_id = self.objcell_id
+        other.frame = self.frame.copy()
+        return other
 
     def __repr__(self) -> str:
         return f"Position({format_cell_id(self.objcell_id)}, {self.frame!r})"

@@ -7,6 +7,11 @@ from collections.abc import Iterator
 
 from acphys.constants import EPSILON
 
+#: ``object.__new__``: the operators below build their results with it and set the slots
+#: directly, skipping ``__init__``'s ``float()`` coercion (their components are floats
+#: already). Constructing vectors is the commonest thing a body step does.
+_new = object.__new__
+
 
 class Vector3:
     """A mutable 3-vector of floats (retail ``AC1Legacy::Vector3``).
@@ -23,7 +28,11 @@ class Vector3:
         self.z = float(z)
 
     def copy(self) -> Vector3:
-        return Vector3(self.x, self.y, self.z)
+        v = _new(Vector3)
+        v.x = self.x
+        v.y = self.y
+        v.z = self.z
+        return v
 
     def set(self, other: Vector3) -> None:
         """Copy ``other``'s components into this vector."""
@@ -38,13 +47,25 @@ class Vector3:
         return f"Vector3({self.x!r}, {self.y!r}, {self.z!r})"
 
     def __add__(self, other: Vector3) -> Vector3:
-        return Vector3(self.x + other.x, self.y + other.y, self.z + other.z)
+        v = _new(Vector3)
+        v.x = self.x + other.x
+        v.y = self.y + other.y
+        v.z = self.z + other.z
+        return v
 
     def __sub__(self, other: Vector3) -> Vector3:
-        return Vector3(self.x - other.x, self.y - other.y, self.z - other.z)
+        v = _new(Vector3)
+        v.x = self.x - other.x
+        v.y = self.y - other.y
+        v.z = self.z - other.z
+        return v
 
     def __mul__(self, scalar: float) -> Vector3:
-        return Vector3(self.x * scalar, self.y * scalar, self.z * scalar)
+        v = _new(Vector3)
+        v.x = self.x * scalar
+        v.y = self.y * scalar
+        v.z = self.z * scalar
+        return v
 
     __rmul__ = __mul__
 
@@ -134,6 +155,13 @@ class Vector3:
         if flat.normalize_check_small():
             return 0.0
         return compass_heading(flat.x, flat.y)
+
+
+def zero_vector() -> Vector3:
+    """``Vector3()`` without the constructor's ``float()`` calls, for hot paths."""
+    v = _new(Vector3)
+    v.x = v.y = v.z = 0.0
+    return v
 
 
 def compass_heading(x: float, y: float) -> float:

@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, float32
-from acphys.flags import PhysicsState, TransientState
+from acphys.flags import PhysicsState, TransientState, member_namespace
 from acphys.math.vector import Vector3
 from acphys.motion.commands import (
     ACTION_MASK,
@@ -54,8 +54,8 @@ if TYPE_CHECKING:
     from acphys.motion.weenie import Weenie
     from acphys.physics_obj import PhysicsObj
 
-PS = PhysicsState
-TS = TransientState
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransientState)
 MF = MovementFlags
 
 #: Locomotion speeds of the standard human cycles at speed 1 (m/s); float32 as the binary holds them.

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING
 
 from acphys.flags import TransitionState
 from acphys.geometry.plane import Plane
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, zero_vector
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -45,10 +45,10 @@ class CollisionInfo:
         self.contact_plane_cell_id = 0
         self.contact_plane_is_water = False
         self.sliding_normal_valid = False
-        self.sliding_normal = Vector3()
+        self.sliding_normal = zero_vector()
         self.collision_normal_valid = False
-        self.collision_normal = Vector3()
-        self.adjust_offset = Vector3()
+        self.collision_normal = zero_vector()
+        self.adjust_offset = zero_vector()
         #: ``collide_object`` (``num_collide_object`` is its length).
         self.collide_object: list[PhysicsObj] = []
         self.last_collided_object: PhysicsObj | None = None
@@ -91,7 +91,7 @@ class CollisionInfo:
         self.collision_normal_valid = True
         self.collision_normal = normal.copy()
         if self.collision_normal.normalize_check_small():
-            self.collision_normal = Vector3()
+            self.collision_normal = zero_vector()
 
     def set_sliding_normal(self, normal: Vector3) -> None:
         """Store the horizontal part of ``normal``, normalised; too short is stored as zero.
@@ -101,7 +101,7 @@ class CollisionInfo:
         self.sliding_normal_valid = True
         self.sliding_normal = Vector3(normal.x, normal.y, 0.0)
         if self.sliding_normal.normalize_check_small():
-            self.sliding_normal = Vector3()
+            self.sliding_normal = zero_vector()
 
     def add_object(self, obj: PhysicsObj, ts: TransitionState) -> None:
         """Record ``obj`` once; a new one becomes ``last_collided_object`` unless ``ts`` is OK.

@@ -18,7 +18,7 @@ import math
 from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, FLOOR_Z
-from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_namespace
 from acphys.math.vector import Vector3
 
 if TYPE_CHECKING:
@@ -28,7 +28,9 @@ if TYPE_CHECKING:
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.sphere_path import SpherePath
 
-OI = ObjectInfoState
+OI = member_namespace(ObjectInfoState)
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransitionState)
 
 
 def x87_divide(numerator: float, denominator: float) -> float:
@@ -88,17 +90,17 @@ class ObjectInfo:
 
         Retail: OBJECTINFO::missile_ignore @ 0x0050CEB0 (acclient.c:314069)
         """
-        if collideobject.state & PhysicsState.MISSILE:
+        if collideobject.state & PS.MISSILE:
             return True
         mover = self.object
         if mover is None:
             raise ValueError("OBJECTINFO.missile_ignore: the transition has no moving object")
-        if not mover.state & PhysicsState.MISSILE or collideobject.id == self.target_id:
+        if not mover.state & PS.MISSILE or collideobject.id == self.target_id:
             return False
         weenie = collideobject.weenie_obj
         if weenie is None:
             return False
-        if collideobject.state & PhysicsState.ETHEREAL:
+        if collideobject.state & PS.ETHEREAL:
             return True
         return self.target_id != 0 and weenie.is_creature()
 
@@ -111,13 +113,13 @@ class ObjectInfo:
         Retail: OBJECTINFO::init @ 0x0050CF30 (acclient.c:314117)
         """
         self.object = obj
-        self.state = OI(object_state)
+        self.state = ObjectInfoState(object_state)
         self.scale = obj.scale
         parts = obj.part_array
         self.step_up_height = parts.get_step_up_height() if parts is not None else 0.0
         self.step_down_height = parts.get_step_down_height() if parts is not None else 0.0
-        self.ethereal = bool(obj.state & PhysicsState.ETHEREAL)
-        self.step_down = not obj.state & PhysicsState.MISSILE
+        self.ethereal = bool(obj.state & PS.ETHEREAL)
+        self.step_down = not obj.state & PS.MISSILE
         weenie = obj.weenie_obj
         if weenie is not None:
             if weenie.is_impenetrable():
@@ -180,7 +182,7 @@ class ObjectInfo:
         if state & OI.IS_VIEWER:
             dist = normal.dot(center) + contact_plane.d - check_pos.radius
             if dist > -EPSILON:
-                return TransitionState.OK
+                return TS.OK
             step = center - path.global_curr_center[0]
             t = x87_divide(dist, step.z * normal.z + step.x * normal.x + step.y * normal.y)
             if (
@@ -188,11 +190,11 @@ class ObjectInfo:
                 and path.begin_pos is not None
                 and (path.begin_pos.objcell_id & 0xFFFF) >= 0x100
             ):
-                return TransitionState.OK
+                return TS.OK
             path.add_offset_to_check_pos(step * -t)
             collisions.set_collision_normal(normal)
             collisions.collided_with_environment = True
-            return TransitionState.ADJUSTED
+            return TS.ADJUSTED
         dist = (
             center.y * normal.y
             + (center.z - check_pos.radius) * normal.z
@@ -203,16 +205,16 @@ class ObjectInfo:
         contact = path.step_down or not state & OI.ON_WALKABLE or self.is_valid_walkable(normal)
         if dist >= -EPSILON:
             if dist > EPSILON:
-                return TransitionState.OK
+                return TS.OK
             if contact:
                 collisions.set_contact_plane(contact_plane, is_water)
                 collisions.contact_plane_cell_id = land_cell_id
-            result = TransitionState.OK
+            result = TS.OK
         else:
             if path.check_walkable:
-                return TransitionState.COLLIDED
+                return TS.COLLIDED
             depth = x87_divide(dist, normal.z)
-            result = TransitionState.OK
+            result = TS.OK
             if contact:
                 collisions.set_contact_plane(contact_plane, is_water)
                 collisions.contact_plane_cell_id = land_cell_id
@@ -220,10 +222,10 @@ class ObjectInfo:
                     scale = x87_divide(-1.0, path.step_down_amt * path.walk_interp)
                     interp = (1.0 - scale * depth) * path.walk_interp
                     if interp >= path.walk_interp or interp < -0.1:
-                        return TransitionState.COLLIDED
+                        return TS.COLLIDED
                     path.walk_interp = interp
                 path.add_offset_to_check_pos(Vector3(0.0, 0.0, -depth))
-                result = TransitionState.ADJUSTED
+                result = TS.ADJUSTED
         if not state & OI.CONTACT and not path.step_down:
             collisions.set_collision_normal(normal)
             collisions.collided_with_environment = True

@@ -30,14 +30,14 @@ import math
 from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, LANDING_Z, float32
-from acphys.flags import TransitionState
+from acphys.flags import TransitionState, member_namespace
 from acphys.math.frame import Frame
 from acphys.transition.transition import InsertType
 
 if TYPE_CHECKING:
     from acphys.transition.transition import Transition
 
-TS = TransitionState
+TS = member_namespace(TransitionState)
 
 #: ``find_placement_pos``: rings reach out to this distance (m), 2 m for a sphere under 0.125 m.
 PLACEMENT_ADJUST_DISTANCE = 4.0

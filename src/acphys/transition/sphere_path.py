@@ -13,7 +13,7 @@ from acphys.flags import TransitionState
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import get_block_offset
 from acphys.math.position import Position
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, zero_vector
 
 if TYPE_CHECKING:
     from acphys.geometry.polygon import Polygon
@@ -85,24 +85,24 @@ class SpherePath:
 
     def __init__(self) -> None:
         self.local_sphere: list[Sphere] = []
-        self.local_low_point = Vector3()
+        self.local_low_point = zero_vector()
         self.global_sphere: list[Sphere] = []
-        self.global_low_point = Vector3()
+        self.global_low_point = zero_vector()
         self.localspace_sphere: list[Sphere] = []
-        self.localspace_low_point = Vector3()
+        self.localspace_low_point = zero_vector()
         self.localspace_curr_center: list[Vector3] = []
         self.global_curr_center: list[Vector3] = []
         self.localspace_pos = Position()
-        self.localspace_z = Vector3()
+        self.localspace_z = zero_vector()
         self.begin_cell: ObjCell | None = None
         #: ``begin_pos``: None for a placement (retail's null pointer).
         self.begin_pos: Position | None = None
         self.end_pos: Position | None = None
         self.curr_cell: ObjCell | None = None
         self.curr_pos = Position()
-        self.global_offset = Vector3()
+        self.global_offset = zero_vector()
         self.step_up = False
-        self.step_up_normal = Vector3()
+        self.step_up_normal = zero_vector()
         self.collide = False
         self.check_cell: ObjCell | None = None
         self.check_pos = Position()
@@ -117,16 +117,16 @@ class SpherePath:
         self.walkable_allowance = 0.0
         self.walk_interp = 0.0
         self.step_down_amt = 0.0
-        self.walkable_check_pos = Sphere(Vector3(), 0.0)
+        self.walkable_check_pos = Sphere(zero_vector(), 0.0)
         #: ``CPolygon *walkable``: the walkable polygon found under the sphere, if any.
         self.walkable: Polygon | None = None
         self.check_walkable = False
-        self.walkable_up = Vector3()
+        self.walkable_up = zero_vector()
         self.walkable_pos = Position()
         self.walkable_scale = 0.0
         self.cell_array_valid = False
         self.neg_step_up = False
-        self.neg_collision_normal = Vector3()
+        self.neg_collision_normal = zero_vector()
         self.neg_poly_hit = False
         self.placement_allows_sliding = True
 
@@ -212,9 +212,9 @@ class SpherePath:
                 sphere.center = sphere.center + offset
             self.global_low_point = self.global_low_point + offset
             return
-        frame = self.check_pos.frame
-        self.global_sphere = [Sphere(frame.localtoglobal(s.center), s.radius) for s in self.local_sphere]
-        self.global_low_point = frame.localtoglobal(self.local_low_point)
+        l2g = self.check_pos.frame.localtoglobal
+        self.global_sphere = [Sphere.owning(l2g(s.center), s.radius) for s in self.local_sphere]
+        self.global_low_point = l2g(self.local_low_point)
 
     def add_offset_to_check_pos(self, offset: Vector3, radius: float | None = None) -> None:
         """Move ``check_pos`` and the global spheres by ``offset``; the cell array goes stale.
@@ -323,7 +323,7 @@ class SpherePath:
         self.localspace_curr_center = []
         for sphere in self.local_sphere:
             center = p.localtolocal(self.check_pos, sphere.center)
-            self.localspace_sphere.append(Sphere(center * inv, inv * sphere.radius))
+            self.localspace_sphere.append(Sphere.owning(center * inv, inv * sphere.radius))
             self.localspace_curr_center.append(p.localtolocal(self.curr_pos, sphere.center) * inv)
         self.localspace_pos = p.copy()
         m = p.frame.m

@@ -41,13 +41,14 @@ import math
 from typing import TYPE_CHECKING, ClassVar
 
 from acphys.constants import EPSILON, LANDING_Z
-from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_namespace
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import adjust_to_outside, get_block_offset
 from acphys.math.vector import Vector3
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo, x87_divide
 from acphys.transition.sphere_path import InsertType, SpherePath
+from acphys.world import obj_cell as cells  # a module, not names from it: the cells import this module
 
 if TYPE_CHECKING:
     from acphys.geometry.sphere import Sphere
@@ -57,8 +58,8 @@ if TYPE_CHECKING:
 
 __all__ = ["MAX_TRANSITION_LEVEL", "InsertType", "SpherePath", "Transition"]
 
-TS = TransitionState
-OI = ObjectInfoState
+TS = member_namespace(TransitionState)
+OI = member_namespace(ObjectInfoState)
 
 #: ``makeTransition`` hands out at most ten nested transitions (acclient.c:312564).
 MAX_TRANSITION_LEVEL = 10
@@ -83,13 +84,11 @@ class Transition:
     transition_level: ClassVar[int] = 0
 
     def __init__(self, world: CellSource, obj: PhysicsObj | None = None) -> None:
-        from acphys.world.obj_cell import CellArray  # imported here: the cells import this module
-
         self.world = world
         self.object_info = ObjectInfo()
         self.sphere_path = SpherePath()
         self.collision_info = CollisionInfo()
-        self.cell_array = CellArray(world)
+        self.cell_array = cells.CellArray(world)
         self.init()
         self.object_info.object = obj
 
@@ -425,9 +424,7 @@ class Transition:
 
     def _find_cell_list(self, want_cell: bool) -> ObjCell | None:
         """``CObjCell::find_cell_list(&cell_array, new_cell_p, &sphere_path)``."""
-        from acphys.world.obj_cell import ObjCell  # imported here: the cells import this module
-
-        return ObjCell.find_cell_list_for_path(self.cell_array, self.sphere_path, want_cell)
+        return cells.ObjCell.find_cell_list_for_path(self.cell_array, self.sphere_path, want_cell)
 
     def check_collisions(self, obj: PhysicsObj) -> bool:
         """Whether the spheres at ``curr_pos`` overlap ``obj`` (as a placement insert).

@@ -319,7 +319,7 @@ class EnvCell(ObjCell):
             if isinstance(other, EnvCell):
                 other_local = other.pos.frame.globaltolocal
                 for sphere in spheres:
-                    local = Sphere(other_local(sphere.center), sphere.radius)
+                    local = Sphere.owning(other_local(sphere.center), sphere.radius)
                     if other.structure.sphere_intersects_cell(local) != CELL_OUTSIDE:
                         cell_array.add_cell(other.id, other)
                         break
@@ -434,7 +434,7 @@ class EnvCell(ObjCell):
             return
         to_local = self.pos.frame.globaltolocal
         for sphere in spheres:
-            if self.structure.sphere_intersects_cell(Sphere(to_local(sphere.center), sphere.radius)):
+            if self.structure.sphere_intersects_cell(Sphere.owning(to_local(sphere.center), sphere.radius)):
                 if path is not None:
                     path.hits_interior_cell = True
                 cell_array.add_cell(self.id, self)

@@ -37,7 +37,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 from acphys.constants import CELL_LENGTH, MAX_LCOORD
-from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_namespace
 from acphys.geometry.bbox import BBox
 from acphys.geometry.plane import Sidedness
 from acphys.geometry.polygon import Polygon
@@ -58,6 +58,12 @@ if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
     from acphys.physics_part import PhysicsPart
     from acphys.transition.transition import SpherePath
+
+OI = member_namespace(ObjectInfoState)
+PS = member_namespace(PhysicsState)
+TS = member_namespace(TransitionState)
+#: ``Sidedness.POSITIVE`` read once: an enum member read through its class is slow (see ``member_namespace``).
+_POSITIVE = Sidedness.POSITIVE
 
 
 class Building(Protocol):
@@ -138,7 +144,7 @@ class SortCell(ObjCell):
         Retail: CSortCell::find_collisions @ 0x005340A0 (acclient.c:356106)
         """
         if self.building is None:
-            return TransitionState.OK
+            return TS.OK
         return self.building.find_building_collisions(transition)
 
     def get_object(self, obj_iid: int) -> PhysicsObj | None:
@@ -179,7 +185,7 @@ class LandCell(SortCell):
         Retail: CLandCell::find_terrain_poly @ 0x00532CF0 (acclient.c:354858)
         """
         for poly in self.polygons:
-            if poly.point_in_poly2D(origin, Sidedness.POSITIVE):
+            if poly.point_in_poly2D(origin, _POSITIVE):
                 return poly
         return None
 
@@ -236,7 +242,7 @@ class LandCell(SortCell):
         Retail: CLandCell::find_env_collisions @ 0x00532F20 (acclient.c:354991)
         """
         result = self.check_entry_restrictions(transition)
-        if result != TransitionState.OK:
+        if result != TS.OK:
             return result
         path = transition.sphere_path
         offset = get_block_offset(path.check_pos.objcell_id, self.id)
@@ -247,13 +253,13 @@ class LandCell(SortCell):
         info = transition.object_info
         if (
             self.get_block_water_type() == WaterType.ENTIRELY_WATER
-            and not info.state & ObjectInfoState.IS_VIEWER
-            and not info.object.state & PhysicsState.MISSILE
+            and not info.state & OI.IS_VIEWER
+            and not info.object.state & PS.MISSILE
         ):
-            return TransitionState.COLLIDED
+            return TS.COLLIDED
         water_depth = self.get_water_depth(local_point)
         sphere = path.global_sphere[0]
-        check_pos = Sphere(sphere.center - offset, sphere.radius)
+        check_pos = Sphere.owning(sphere.center - offset, sphere.radius)
         return info.validate_walkable(
             check_pos,
             walkable.plane,
@@ -270,9 +276,9 @@ class LandCell(SortCell):
         Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
         """
         result = self.find_env_collisions(transition)
-        if result == TransitionState.OK:
+        if result == TS.OK:
             result = super().find_collisions(transition)
-            if result == TransitionState.OK:
+            if result == TS.OK:
                 result = self.find_obj_collisions(transition)
         return result
 

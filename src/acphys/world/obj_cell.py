@@ -45,7 +45,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
-from acphys.flags import ObjectInfoState, TransitionState
+from acphys.flags import ObjectInfoState, TransitionState, member_namespace
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id, get_block_offset
 from acphys.math.position import Position
@@ -61,6 +61,9 @@ if TYPE_CHECKING:
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.object_info import ObjectInfo
     from acphys.transition.transition import SpherePath
+
+OI = member_namespace(ObjectInfoState)
+TS = member_namespace(TransitionState)
 
 #: ``DetectionType`` values the voyeur calls send (acclient.h:6075).
 ENTERED_DETECTION = 1
@@ -181,8 +184,9 @@ class CellArray:
 
         Retail: CELLARRAY::add_cell @ 0x006B4FF0 (acclient.c:718895)
         """
-        if any(info.cell_id == cell_id for info in self.cells):
-            return
+        for info in self.cells:
+            if info.cell_id == cell_id:
+                return
         self.cells.append(CellInfo(cell_id, cell))
 
     def remove_cell(self, index: int) -> None:
@@ -384,15 +388,15 @@ class ObjCell:
         Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
         """
         if transition.sphere_path.insert_type == InsertType.INITIAL_PLACEMENT:
-            return TransitionState.OK
-        result = TransitionState.OK
+            return TS.OK
+        result = TS.OK
         mover = transition.object_info.object
         for shadow in list(self.shadow_objects):
             body = shadow.physobj
             if body.parent is not None or body is mover:
                 continue
             result = body.find_obj_collisions(transition)
-            if result != TransitionState.OK:
+            if result != TS.OK:
                 break
         return result
 
@@ -414,17 +418,17 @@ class ObjCell:
         """
         obj = transition.object_info.object
         if obj is None:
-            return TransitionState.COLLIDED
+            return TS.COLLIDED
         if (
             getattr(obj, "weenie_obj", None) is not None
-            and transition.object_info.state & ObjectInfoState.IS_PLAYER
+            and transition.object_info.state & OI.IS_PLAYER
             and self.restriction_obj
         ):
             raise ValueError(
                 f"cell {format_cell_id(self.id)} has restriction object {self.restriction_obj:#x}: "
                 "entry restrictions (housing barriers) are not supported"
             )
-        return TransitionState.OK
+        return TS.OK
 
     def find_env_collisions(self, transition: CellTransition) -> TransitionState:
         """Collide with the cell's own geometry (pure virtual in ``CObjCell``)."""
@@ -559,7 +563,7 @@ class ObjCell:
 
         Retail: CObjCell::find_cell_list @ 0x0052B990 (acclient.c:347321)
         """
-        global_sphere = Sphere(p.frame.localtoglobal(sphere.center), sphere.radius)
+        global_sphere = Sphere.owning(p.frame.localtoglobal(sphere.center), sphere.radius)
         ObjCell.find_cell_list(p, [global_sphere], cell_array, path)
 
     @staticmethod

@@ -376,3 +376,141 @@ def landblock_info_record(
         raw += struct.pack("<HH", len(restrictions), buckets)
         raw += b"".join(struct.pack("<II", cell, iid) for cell, iid in restrictions)
     return raw
+
+
+# -- environments (0x0Dxxxxxx) and env cells (0xXXYY0100 +) -----------------------------------
+
+ENVIRONMENT_ID = 0x0D000123
+#: The box room of ``environment_record``: cell-local x 0..6, y 0..6, z 0..3, with a doorway
+#: in the west wall (x 0) at y 2.4..3.6, z 0..2.2.
+ROOM_SIZE = (6.0, 6.0, 3.0)
+DOOR_Y = (2.4, 3.6)
+DOOR_TOP = 2.2
+
+
+def _room_vertices() -> list[tuple[float, float, float]]:
+    """Box corners 0-7 (``box_corner`` of the room), then the doorway's four corners 8-11."""
+    corners = [box_corner(i, (0.0, 0.0, 0.0), ROOM_SIZE) for i in range(8)]
+    y0, y1 = DOOR_Y
+    return [*corners, (0.0, y0, 0.0), (0.0, y1, 0.0), (0.0, y1, DOOR_TOP), (0.0, y0, DOOR_TOP)]
+
+
+def _poly_bytes(poly_id: int, ids: Sequence[int], sides: int = 0, uvs: bool = False) -> bytes:
+    """A ``CPolygon``: u16 id, u8 point count, u8 stippling (0 with ``uvs``, else 4 | 8: no UV
+    bytes), i32 sides type, u16 pos / neg surface, u16 vertex ids, then with ``uvs`` a UV byte
+    per point, and for sides type 2 (both) a second set for the negative side."""
+    raw = struct.pack("<HBBi2H", poly_id, len(ids), 0 if uvs else 12, sides, 0, 0)
+    raw += struct.pack(f"<{len(ids)}H", *ids)
+    return raw + (bytes(len(ids) * (2 if sides == 2 else 1)) if uvs else b"")
+
+
+def _plane(normal: tuple[float, float, float], d: float) -> bytes:
+    return struct.pack("<4f", *normal, d)
+
+
+def _cell_leaf(index: int) -> bytes:
+    """A cell- or drawing-tree leaf: its tag and i32 index only."""
+    return struct.pack("<Ii", type_tag("LEAF"), index)
+
+
+def cell_struct_bytes(start: int, poly_ids: tuple[int, int] = (0, 1), drawing: bool = True) -> bytes:
+    """One ``CCellStruct`` of the box room, written at record offset ``start`` (for the padding).
+
+    - vertices: the 12 of ``_room_vertices`` (vertex type 1, no UVs);
+    - polygons: [0] the floor (+z up, stored id ``poly_ids[0]``), [1] the doorway (facing +x,
+      into the room; stored id ``poly_ids[1]``; double-sided with UV bytes); portals: [1];
+    - cell BSP: ``PORT`` on the west plane (x 0, normal +x) whose pos is a chain of ``BPIn``
+      nodes (east, south, north, floor) ending in ``BPnn`` (ceiling) with a ``LEAF`` 0, and
+      whose neg is ``LEAF`` 1;
+    - physics polygons: [0] the floor, [1] the east wall (facing -x);
+    - physics BSP: ``BPnN`` (floor plane): pos ``BPnN`` (east plane: pos empty ``LEAF`` 0, neg
+      ``LEAF`` 1 with physics polygon 1), neg ``LEAF`` 2 solid with physics polygon 0;
+    - drawing BSP (flag dword 1): ``BPIN`` (west plane): pos ``PORT`` (same plane, leaves 0, 1;
+      sphere, polygon 0, portal pair (1, 0)), neg ``LEAF`` 2; sphere; polygon 1.
+    """
+    sx, sy, sz = ROOM_SIZE
+    vertices = _room_vertices()
+    sphere = struct.pack("<4f", sx / 2, sy / 2, sz / 2, 4.5)
+    raw = struct.pack("<4I", 0, 2, 2, 1)  # cellstruct id, polygons, physics polygons, portals
+    raw += struct.pack("<iI", 1, len(vertices))
+    for i, v in enumerate(vertices):
+        raw += struct.pack("<2H", i, 0) + struct.pack("<3f", *v) + struct.pack("<3f", 0.0, 0.0, 1.0)
+    floor = (0, 1, 3, 2)  # z 0, counter-clockwise seen from above
+    door = (8, 9, 10, 11)  # x 0, counter-clockwise seen from +x
+    raw += _poly_bytes(poly_ids[0], floor) + _poly_bytes(poly_ids[1], door, sides=2, uvs=True)
+    raw += struct.pack("<H", 1)  # the portal: polygon 1 by position
+    raw += b"\0" * (-(start + len(raw)) % 4)
+    # cell BSP
+    raw += struct.pack("<I", type_tag("PORT")) + _plane((1.0, 0.0, 0.0), 0.0)
+    chain = [((-1.0, 0.0, 0.0), sx), ((0.0, 1.0, 0.0), 0.0), ((0.0, -1.0, 0.0), sy), ((0.0, 0.0, 1.0), 0.0)]
+    for normal, d in chain:
+        raw += struct.pack("<I", type_tag("BPIn")) + _plane(normal, d)
+    raw += struct.pack("<I", type_tag("BPnn")) + _plane((0.0, 0.0, -1.0), sz) + _cell_leaf(0)
+    raw += _cell_leaf(1)  # the PORT's neg child
+    # physics polygons and BSP
+    east = (1, 5, 7, 3)  # x 6, counter-clockwise seen from -x (inside)
+    raw += _poly_bytes(0, floor) + _poly_bytes(1, east)
+    raw += struct.pack("<I", type_tag("BPnN")) + _plane((0.0, 0.0, 1.0), 0.0)
+    raw += struct.pack("<I", type_tag("BPnN")) + _plane((-1.0, 0.0, 0.0), sx)
+    raw += struct.pack("<IiI", type_tag("LEAF"), 0, 0) + struct.pack("<4f", sx / 2, sy / 2, sz / 2, 0.0)
+    raw += struct.pack("<I", 0)
+    raw += struct.pack("<IiI", type_tag("LEAF"), 1, 0) + struct.pack("<4f", sx, sy / 2, sz / 2, 3.4)
+    raw += struct.pack("<IH", 1, 1)
+    raw += sphere  # the east node's sphere
+    raw += struct.pack("<IiI", type_tag("LEAF"), 2, 1) + struct.pack("<4f", sx / 2, sy / 2, 0.0, 4.3)
+    raw += struct.pack("<IH", 1, 0)
+    raw += sphere  # the root's sphere
+    # drawing BSP
+    raw += struct.pack("<I", 1 if drawing else 0)
+    if drawing:
+        raw += struct.pack("<I", type_tag("BPIN")) + _plane((1.0, 0.0, 0.0), 0.0)
+        raw += struct.pack("<I", type_tag("PORT")) + _plane((1.0, 0.0, 0.0), 0.0)
+        raw += _cell_leaf(0) + _cell_leaf(1)
+        raw += sphere + struct.pack("<II", 1, 1) + struct.pack("<H", 0) + struct.pack("<Hh", 1, 0)
+        raw += _cell_leaf(2)
+        raw += sphere + struct.pack("<IH", 1, 1)
+    return raw + b"\0" * (-(start + len(raw)) % 4)
+
+
+def environment_record(env_id: int = ENVIRONMENT_ID, structs: int = 1, **kwargs: object) -> bytes:
+    """A ``CEnvironment``: DID, struct count, then ``structs`` copies of the room's cell struct
+    (each written at its own offset, so the padding is the record's)."""
+    raw = struct.pack("<II", env_id, structs)
+    for _ in range(structs):
+        raw += cell_struct_bytes(len(raw), **kwargs)  # type: ignore[arg-type]
+    return raw
+
+
+def cell_portal_bytes(flags: int, poly_id: int, other_cell: int, other_portal: int) -> bytes:
+    """A ``CCellPortal``: u16 flags, u16 polygon id, u16 other cell number, i16 other portal."""
+    return struct.pack("<HHHh", flags, poly_id, other_cell, other_portal)
+
+
+def env_cell_record(
+    cell_id: int,
+    origin: tuple[float, float, float],
+    portals: Sequence[bytes],
+    env_id: int = ENVIRONMENT_ID,
+    struct_index: int = 0,
+    surfaces: Sequence[int] = (0x0123,),
+    stabs: Sequence[int] = (),
+    objects: Sequence[bytes] | None = None,
+    restriction: int | None = None,
+    seen_outside: bool = True,
+) -> bytes:
+    """A ``CEnvCell``: DID, flags (1 seen outside, 2 ``objects`` given, 8 ``restriction``), the
+    cell id again, u8 surface count, u8 portal count, u16 stab count, u16 surfaces, u16
+    environment number, u16 struct index, frame (identity rotation), portals, u16 stab numbers,
+    [object count and {DID, frame} objects], [restriction dword]. No padding."""
+    flags = 1 if seen_outside else 0
+    flags |= (2 if objects is not None else 0) | (8 if restriction is not None else 0)
+    raw = struct.pack("<III", cell_id, flags, cell_id)
+    raw += struct.pack("<BBH", len(surfaces), len(portals), len(stabs))
+    raw += struct.pack(f"<{len(surfaces)}H", *surfaces)
+    raw += struct.pack("<HH", env_id & 0xFFFF, struct_index) + frame_bytes(origin)
+    raw += b"".join(portals) + struct.pack(f"<{len(stabs)}H", *stabs)
+    if objects is not None:
+        raw += struct.pack("<I", len(objects)) + b"".join(objects)
+    if restriction is not None:
+        raw += struct.pack("<I", restriction)
+    return raw

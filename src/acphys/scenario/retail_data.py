@@ -13,6 +13,14 @@ from types import TracebackType
 from typing import Any
 
 from acphys.dat import REGION_ID, DatError, DatFile, unpack_landblock, unpack_region, unpack_setup
+from acphys.dat.env_cell import (
+    ENVIRONMENT_ID_TYPE,
+    EnvCellRecord,
+    EnvironmentRecord,
+    make_env_cell,
+    unpack_env_cell,
+    unpack_environment,
+)
 from acphys.dat.gfxobj import GfxObjRecord, setup_physics_bsp, unpack_gfxobj
 from acphys.dat.landblock_info import LandBlockInfoRecord, unpack_landblock_info
 from acphys.dat.motion import unpack_animation, unpack_motion_table
@@ -25,6 +33,7 @@ from acphys.motion.motion_table import MotionTable
 from acphys.scenario import values as read
 from acphys.scenario.values import Ctx
 from acphys.setup import Setup
+from acphys.world.env_cell import EnvCell, Environment
 from acphys.world.terrain import LandBlockStruct
 
 DATA_KEYS = ("portal", "cell")
@@ -62,6 +71,8 @@ class RetailData:
         self._gfxobjs: dict[int, GfxObjRecord] = {}
         #: Each read landblock's ``lbi_exists``.
         self._lbi_exists: dict[int, int] = {}
+        #: Environments as read and as made, shared by the env cells that use them.
+        self._environments: dict[int, tuple[EnvironmentRecord, Environment]] = {}
 
     def __enter__(self) -> RetailData:
         return self
@@ -216,6 +227,49 @@ class RetailData:
                 key, f"{self.cell.path}: record {info_id:#010x} holds landblock info {info.did:#010x}"
             )
         return info
+
+    def environment(self, key: str, env_id: int) -> tuple[EnvironmentRecord, Environment]:
+        """The portal's environment ``env_id`` (0x0Dxxxxxx), as read and as made (kept once read)."""
+        if self.portal is None:
+            raise self.ctx.fail(key, f"environment {env_id:#010x} of an env cell needs a [data] portal")
+        if env_id >> 24 != ENVIRONMENT_ID_TYPE:
+            raise self.ctx.fail(key, f"{env_id:#010x} is not an environment id (they are 0x0Dxxxxxx)")
+        found = self._environments.get(env_id)
+        if found is None:
+            data = self._record(key, self.portal, env_id, "environment")
+            try:
+                record = unpack_environment(data)
+            except DatError as error:
+                raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
+            if record.did != env_id:
+                raise self.ctx.fail(
+                    key, f"{self.portal.path}: record {env_id:#010x} holds environment {record.did:#010x}"
+                )
+            found = (record, record.to_environment())
+            self._environments[env_id] = found
+        return found
+
+    def env_cell(self, key: str, cell_id: int) -> tuple[EnvCellRecord, EnvCell]:
+        """The cell DAT's env cell ``cell_id`` (0xXXYY0100 and up), as read and as made, with its
+        environment from the portal DAT."""
+        if self.cell is None:
+            raise self.ctx.fail(key, "env cells from the DAT need a [data] cell")
+        data = self._record(key, self.cell, cell_id, "env cell")
+        try:
+            record = unpack_env_cell(data)
+        except DatError as error:
+            raise self.ctx.fail(key, f"{self.cell.path}: {error}") from None
+        if record.did != cell_id or record.cell_id != cell_id:
+            raise self.ctx.fail(
+                key,
+                f"{self.cell.path}: record {cell_id:#010x} holds env cell {record.did:#010x} "
+                f"(cell id {record.cell_id:#010x})",
+            )
+        env_record, environment = self.environment(key, record.environment_id)
+        try:
+            return record, make_env_cell(record, env_record, environment)
+        except DatError as error:
+            raise self.ctx.fail(key, f"{self.cell.path}: {error}") from None
 
     def object_setup(self, key: str, object_id: int) -> Setup | None:
         """The physics view of a static object's DID, as ``CPhysicsObj::InitPartArrayObject``

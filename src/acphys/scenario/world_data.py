@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import Any
 
 from acphys.constants import BLOCK_LENGTH
+from acphys.dat.env_cell import init_buildings, init_static_objects
 from acphys.dat.landblock_info import init_static_objs
 from acphys.geometry.bsp import BSPTree
 from acphys.geometry.bsp_builder import box_faces, build_convex_tree, build_union_tree
@@ -80,8 +81,9 @@ def _water(ctx: Ctx, key: str, value: Any) -> list[int]:
 def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
     """Add each ``[[landblock]]`` to ``world``: flat ``height``, ``heights`` through a
     ``height_table`` (the portal DAT's region table when it has none), or with only ``id`` the
-    cell DAT's terrain and static objects (placed once every landblock is in); ``water`` as
-    terrain words."""
+    cell DAT's terrain, static objects, env cells (0xXXYY0100 up, ``num_cells`` of them),
+    buildings and the env cells' static objects (placed once every landblock is in); ``water``
+    as terrain words."""
     seen: set[int] = set()
     from_dat: list[tuple[str, int, LandBlock]] = []
     for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
@@ -137,8 +139,20 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
         )
     for key, landblock, block in from_dat:
         info = data.landblock_info(key, landblock)
-        if info is not None:
-            init_static_objs(world, block, info, lambda object_id, key=key: data.object_setup(key, object_id))
+        if info is None:
+            continue
+
+        def object_setup(object_id: int, key: str = key) -> Setup | None:
+            return data.object_setup(key, object_id)
+
+        init_static_objs(world, block, info, object_setup)
+        first = info.block_mask | FIRST_ENV_CELL
+        env_cells = [data.env_cell(key, first + n) for n in range(info.num_cells)]
+        for _record, cell in env_cells:
+            world.add_cell(cell)
+        init_buildings(world, block, info, object_setup)
+        for record, cell in env_cells:
+            init_static_objects(world, cell, record, object_setup)
 
 
 # -- solid setups -----------------------------------------------------------------------------

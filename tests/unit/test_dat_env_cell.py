@@ -314,3 +314,20 @@ def test_a_cell_dat_building_loads_its_room_and_door(room_dats: Path) -> None:
         if not visited or visited[-1] != cell:
             visited.append(cell)
     assert visited == [LAND, ROOM]
+
+
+def test_scenario_rooms_are_numbered_after_the_dat_cells(room_dats: Path) -> None:
+    # The cell DAT gives 0xA9B4 its env cell 0x0100; a scenario [[building]] in the same landblock
+    # numbers its room after it, 0x0101, instead of clashing.
+    building = (
+        '\n[[building]]\nlandblock = "0xA9B4"\norigin = [40.0, 40.0, 0.0]\n'
+        'rooms = [{ name = "hut", min = [-2.0, -2.0, 0.0], max = [2.0, 2.0, 3.0] }]\n'
+        'doorways = [{ between = ["hut", "outside"], min = [-0.5, -2.0, 0.0], max = [0.5, -2.0, 2.0] }]\n'
+    )
+    path = room_dats / "both.toml"
+    path.write_text(WALK + building, encoding="utf-8")
+    sim = acphys.load_scenario(path)
+    assert isinstance(sim.world.get_cell(ROOM), EnvCell)
+    hut = sim.world.get_cell(ROOM + 1)
+    assert isinstance(hut, EnvCell)
+    assert hut.pos.frame.origin.x < 50.0

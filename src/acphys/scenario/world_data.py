@@ -421,7 +421,11 @@ def read_buildings(ctx: Ctx, raw: Any, world: World) -> dict[int, list[EnvCell]]
                         f"in [0, 192)",
                     )
         placed = rooms_by_block.setdefault(landblock, [])
+        # Rooms are numbered after the landblock's other env cells (those a cell DAT loaded, then
+        # earlier buildings'), so ids never clash.
         first = FIRST_ENV_CELL + len(placed)
+        while world.get_cell(cell_of(landblock, first)) is not None:
+            first += 1
         specs = [RoomSpec(cell_of(landblock, first + n), lo, hi) for n, (lo, hi) in enumerate(rooms.values())]
         try:
             building, cells = build_house(specs, doorways, wall_thickness=thickness)

@@ -331,3 +331,14 @@ def test_scenario_rooms_are_numbered_after_the_dat_cells(room_dats: Path) -> Non
     hut = sim.world.get_cell(ROOM + 1)
     assert isinstance(hut, EnvCell)
     assert hut.pos.frame.origin.x < 50.0
+
+
+def test_a_body_starting_in_a_dat_room_starts_in_its_cell(room_dats: Path) -> None:
+    # The loader places a body in the room holding its origin (CEnvCell::point_in_cell), DAT rooms
+    # included, before enter_world's placement (CPhysicsObj::enter_world, acclient.c:323440).
+    path = room_dats / "inside.toml"
+    path.write_text(
+        WALK.replace("origin = [86.0, 93.0, 0.005]", "origin = [92.0, 93.0, 0.005]"), encoding="utf-8"
+    )
+    sim = acphys.load_scenario(path)
+    assert sim.body("walker").position.objcell_id == ROOM

@@ -44,7 +44,6 @@ from acphys.scenario.world_data import (
 )
 from acphys.setup import BUILTIN_SETUPS, Setup, bounding_sphere
 from acphys.simulation import Simulation
-from acphys.world.env_cell import EnvCell
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
@@ -229,7 +228,6 @@ def _read_body(
     world: World,
     find_setup: SetupLookup,
     tables: dict[str, MotionTable],
-    rooms: dict[int, list[EnvCell]],
     data: RetailData,
 ) -> PhysicsObj:
     table = read.table(ctx, key, raw, BODY_KEYS)
@@ -267,7 +265,7 @@ def _read_body(
         motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
 
     frame = Frame.from_heading(origin, heading)
-    body.enter_world(Position(cell_at(rooms, landblock, origin), frame))
+    body.enter_world(Position(cell_at(world, landblock, origin), frame))
     on_ground = read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False))
     if on_ground and not body.transient_state & TransientState.CONTACT:
         # Placement found nothing underfoot (no terrain here): a level contact plane at the origin.
@@ -325,15 +323,15 @@ def parse_scenario(
     with read_data(ctx, document.get("data", {}), folder) as data:
         setups = _read_setups(ctx, document.get("setup", {}), tables, data)
         read_landblocks(ctx, document.get("landblock", []), world, data)
-        rooms = read_buildings(ctx, document.get("building", []), world)
+        read_buildings(ctx, document.get("building", []), world)
         find_setup = _setup_lookup(ctx, setups, data)
-        objects = read_objects(ctx, document.get("object", []), world, find_setup, rooms)
+        objects = read_objects(ctx, document.get("object", []), world, find_setup)
         raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
         if not raw_bodies:
             raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
         bodies: list[PhysicsObj] = []
         for index, raw in enumerate(raw_bodies):
-            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, rooms, data)
+            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, data)
             if any(other.name == body.name for other in bodies):
                 raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
             if any(other.name == body.name for other in objects):

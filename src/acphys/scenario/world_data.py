@@ -26,7 +26,6 @@ from acphys.scenario import values as read
 from acphys.scenario.retail_data import RetailData
 from acphys.scenario.values import Ctx
 from acphys.setup import Setup
-from acphys.world.env_cell import EnvCell
 from acphys.world.land_cell import SortCell
 from acphys.world.landblock import LandBlock
 from acphys.world.rooms import DoorwaySpec, RoomSpec, build_house
@@ -220,10 +219,10 @@ def _landblock_point(ctx: Ctx, key: str, value: Any) -> Vector3:
     return origin
 
 
-def cell_at(rooms: dict[int, list[EnvCell]], landblock: int, point: Vector3) -> int:
-    """The cell holding the landblock-local ``point``: a scenario room containing it, else the
-    outdoor cell."""
-    for cell in rooms.get(landblock, []):
+def cell_at(world: World, landblock: int, point: Vector3) -> int:
+    """The cell holding the landblock-local ``point``: a room containing it (a scenario
+    ``[[building]]``'s or one a cell DAT loaded), else the outdoor cell."""
+    for cell in world.landscape.env_cells(landblock):
         if cell.point_in_cell(point):
             return cell.id
     return outdoor_cell_id(landblock, point)
@@ -232,9 +231,7 @@ def cell_at(rooms: dict[int, list[EnvCell]], landblock: int, point: Vector3) -> 
 OBJECT_KEYS = ("name", "setup", "landblock", "origin", "heading", "scale")
 
 
-def read_objects(
-    ctx: Ctx, raw: Any, world: World, find_setup: SetupLookup, rooms: dict[int, list[EnvCell]]
-) -> list[PhysicsObj]:
+def read_objects(ctx: Ctx, raw: Any, world: World, find_setup: SetupLookup) -> list[PhysicsObj]:
     """Place each ``[[object]]`` in ``world`` (in the room holding its origin, if any)."""
     objects: list[PhysicsObj] = []
     for index, item in enumerate(read.list_of_tables(ctx, "object", raw)):
@@ -253,7 +250,7 @@ def read_objects(
         origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
         heading = read.ranged(ctx, f"{key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
         scale = read.ranged(ctx, f"{key}.scale", entry.get("scale", 1.0), 0.0, 1000.0, open_low=True)
-        position = Position(cell_at(rooms, landblock, origin), Frame.from_heading(origin, heading))
+        position = Position(cell_at(world, landblock, origin), Frame.from_heading(origin, heading))
         try:
             objects.append(add_static_object(world, name, setup, position, scale))
         except ValueError as error:
@@ -385,11 +382,10 @@ def _read_doorways(
     return doorways
 
 
-def read_buildings(ctx: Ctx, raw: Any, world: World) -> dict[int, list[EnvCell]]:
+def read_buildings(ctx: Ctx, raw: Any, world: World) -> None:
     """Build each ``[[building]]`` with ``build_house``: its rooms become env cells of the world
     (ids 0x0100 up in their landblock, in order), the building stands in the land cell holding
-    its origin. Returns the rooms by landblock."""
-    rooms_by_block: dict[int, list[EnvCell]] = {}
+    its origin."""
     for index, item in enumerate(read.list_of_tables(ctx, "building", raw)):
         key = f"building[{index}]"
         entry = read.table(ctx, key, item, BUILDING_KEYS)
@@ -420,10 +416,9 @@ def read_buildings(ctx: Ctx, raw: Any, world: World) -> dict[int, list[EnvCell]]
                         f"the building reaches ({x:g}, {y:g}), outside its landblock: walls must stay "
                         f"in [0, 192)",
                     )
-        placed = rooms_by_block.setdefault(landblock, [])
         # Rooms are numbered after the landblock's other env cells (those a cell DAT loaded, then
         # earlier buildings'), so ids never clash.
-        first = FIRST_ENV_CELL + len(placed)
+        first = FIRST_ENV_CELL
         while world.get_cell(cell_of(landblock, first)) is not None:
             first += 1
         specs = [RoomSpec(cell_of(landblock, first + n), lo, hi) for n, (lo, hi) in enumerate(rooms.values())]
@@ -438,5 +433,3 @@ def read_buildings(ctx: Ctx, raw: Any, world: World) -> dict[int, list[EnvCell]]
             world.add_cell(cell)
         building.add_to_cell(land)
         building.source = world
-        placed.extend(cells)
-    return rooms_by_block

@@ -135,6 +135,12 @@ class Landscape:
         block = self.get_landblock(cell_id)
         return block.get_landcell(cell_id) if block is not None else None
 
+    def env_cells(self, landblock: int) -> list[ObjCell]:
+        """The added (indoor) cells of ``landblock`` (``0xXXYY``), in id order."""
+        return sorted(
+            (cell for cell in self._cells.values() if landblock_of(cell.id) == landblock), key=lambda c: c.id
+        )
+
     def get_cell(self, cell_id: int) -> ObjCell | None:
         """Any cell by id: land cells through their landblock, others from the added cells."""
         if (cell_id & 0xFFFF) < FIRST_ENV_CELL:

@@ -250,6 +250,29 @@ def box_setup_record(setup_id: int = BOX_SETUP_ID, parts: Sequence[int] = (BOX_G
     return raw
 
 
+def parts_setup_record(
+    setup_id: int,
+    parts: Sequence[int],
+    origins: Sequence[tuple[float, float, float]],
+    scales: Sequence[tuple[float, float, float]] | None = None,
+    placement_id: int = 0x65,
+) -> bytes:
+    """A static object's many-part setup: flags 8 (HAS_PHYSICS_BSP), plus 2 with ``scales`` (one
+    default scale a part); placement ``placement_id`` puts part i at ``origins[i]``, unturned."""
+    flags = 0x8 | (0x2 if scales is not None else 0)
+    raw = struct.pack("<III", setup_id, flags, len(parts)) + struct.pack(f"<{len(parts)}I", *parts)
+    if scales is not None:
+        raw += b"".join(struct.pack("<3f", *scale) for scale in scales)
+    raw += struct.pack("<II", 0, 0)  # holding locations, connection points
+    raw += struct.pack("<II", 1, placement_id) + b"".join(frame_bytes(origin) for origin in origins)
+    raw += struct.pack("<I", 0)  # no hooks
+    raw += struct.pack("<II", 0, 0)  # cylspheres, spheres
+    raw += struct.pack("<4f", 2.5, 20.0, 0.0, 0.0)
+    raw += struct.pack("<8f", 0, 0, 1.25, 20.2, 0, 0, 1.25, 20.2)  # sorting, selection spheres
+    raw += struct.pack("<I5I", 0, 0, 0, 0, 0, 0)  # lights, default ids
+    return raw
+
+
 # -- animations (0x03xxxxxx) and motion tables (0x09xxxxxx) -----------------------------------
 
 

@@ -9,6 +9,7 @@ from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.motion.animation import AnimFrame
 from acphys.motion.movement import MovementError, MovementParameters, MovementStruct, MovementType
 from acphys.motion.sequence import Sequence
 from acphys.motion.table_manager import MotionTableManager
@@ -22,12 +23,20 @@ if TYPE_CHECKING:
     from acphys.world.obj_cell import CellArray, ObjCell
 
 
+#: The placement ``CPartArray::CreateSetup`` asks for (``SetPlacementFrame(0x65)``, acclient.c:326973).
+DEFAULT_PLACEMENT_ID = 0x65
+
+
 class PartArray:
     """Retail ``CPartArray`` (acclient.h:30762): owns the setup, the sequence and the motion tables.
 
     ``scale`` is the part array's (uniform) scale, kept equal to the body's
-    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``. ``parts`` holds the setup's one part
-    (acphys setups have one; retail ``InitParts`` makes ``setup->num_parts``).
+    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``. ``parts`` holds one part per
+    ``setup.parts`` entry (``InitParts``, acclient.c:325273), or the one part of a setup without
+    that list. A many-part array starts in its default placement: ``CPartArray::CreateSetup``
+    (acclient.c:326946) calls ``SetPlacementFrame(0x65)``, which hands the sequence the setup's
+    per-part placement frames (acphys setups carry only that one placement, see
+    :class:`~acphys.setup.SetupPart`).
     """
 
     __slots__ = ("motion_table_manager", "owner", "parts", "scale", "sequence", "setup")
@@ -36,9 +45,14 @@ class PartArray:
         self.setup = setup
         self.owner = owner
         self.scale = 1.0
-        self.parts: list[PhysicsPart] = [PhysicsPart(setup)]
         self.sequence = Sequence()
         self.sequence.set_object(owner)
+        if setup.parts is None:
+            self.parts: list[PhysicsPart] = [PhysicsPart(setup)]
+        else:
+            self.parts = [PhysicsPart(setup, part) for part in setup.parts]
+            placement = AnimFrame([part.placement_frame.copy() for part in setup.parts])
+            self.sequence.set_placement_frame(placement, DEFAULT_PLACEMENT_ID)
         self.motion_table_manager: MotionTableManager | None = None
 
     def set_owner(self, owner: PhysicsObj) -> None:
@@ -183,14 +197,20 @@ class PartArray:
     # -- the parts ------------------------------------------------------------------------
 
     def set_scale_internal(self, new_scale: float) -> None:
-        """Take ``new_scale`` and give it to every part's ``gfxobj_scale`` (acphys setups have no
-        per-part ``default_scale`` to multiply it by).
+        """Take ``new_scale``; every part's ``gfxobj_scale`` becomes it times the part's
+        ``default_scale`` per axis, or ``new_scale`` itself for a setup without part descriptions
+        (retail: no ``default_scale`` array).
 
         Retail: CPartArray::SetScaleInternal @ 0x00518A00 (acclient.c:326181)
         """
         self.scale = new_scale
-        for part in self.parts:
-            part.gfxobj_scale = Vector3(new_scale, new_scale, new_scale)
+        if self.setup.parts is None:
+            for part in self.parts:
+                part.gfxobj_scale = Vector3(new_scale, new_scale, new_scale)
+            return
+        for part, desc in zip(self.parts, self.setup.parts, strict=True):
+            default = desc.default_scale
+            part.gfxobj_scale = Vector3(default.x * new_scale, default.y * new_scale, default.z * new_scale)
 
     def set_cell_id(self, cell_id: int) -> None:
         """Retail: CPartArray::SetCellID @ 0x00517DD0 (acclient.c:325145)"""
@@ -209,8 +229,8 @@ class PartArray:
         (or placement frame), whose offset is scaled by ``scale`` (``Frame::combine`` with a
         scale, acclient.c:326562); only as many parts as both have.
 
-        With neither (retail setups always bring a placement frame; acphys ones have none) the
-        single part sits at the setup origin, so its frame is ``frame`` itself.
+        With neither (a setup without part descriptions brings no placement frame) the single
+        part sits at the setup origin, so its frame is ``frame`` itself.
 
         Retail: CPartArray::UpdateParts @ 0x005190F0 (acclient.c:326600)
         """

@@ -1,7 +1,11 @@
 """``CPhysicsPart``: one part of a body, placed in the world, with its gfx object's bounding box.
 
 Retail keeps a part's geometry on its ``CGfxObj``; acphys has no gfx objects, so a part reads
-its setup (acphys setups have exactly one part, at the setup origin):
+its setup's :class:`~acphys.setup.SetupPart` (many-part setups: that part's physics BSP, its
+``gfx_bound_box`` or else the box around the BSP's polygon vertices, no drawing sphere since acphys
+reads no drawing data, and ``gfxobj_scale`` starting at its ``default_scale`` as
+``CPartArray::InitParts`` sets it, acclient.c:325328), or else the setup itself (a one-part
+setup, its part at the setup origin):
 
 - the bounding box (``CGfxObj::gfx_bound_box``) is the box around the vertices of the setup's
   ``physics_bsp`` polygons (retail: around the gfx object's whole vertex array); a setup without
@@ -38,7 +42,7 @@ from acphys.transition.transition import InsertType
 if TYPE_CHECKING:
     from acphys.geometry.bsp import BSPNode, BSPTree
     from acphys.geometry.sphere import Sphere, SphereTransition
-    from acphys.setup import Setup
+    from acphys.setup import Setup, SetupPart
 
 
 def _bsp_vertices(node: BSPNode | None, out: list[Vector3]) -> None:
@@ -50,13 +54,19 @@ def _bsp_vertices(node: BSPNode | None, out: list[Vector3]) -> None:
     _bsp_vertices(node.neg_node, out)
 
 
+def bsp_bound_box(bsp: BSPTree | None) -> BBox:
+    """The box around the vertices of ``bsp``'s polygons (the zero box without a tree)."""
+    points: list[Vector3] = []
+    if bsp is not None:
+        _bsp_vertices(bsp.root_node, points)
+    return BBox.around(points)
+
+
 def gfx_bound_box(setup: Setup) -> BBox:
-    """The part's local bounding box from ``setup`` (see the module docstring)."""
+    """The one-part setup's local bounding box from ``setup`` (see the module docstring)."""
     if setup.physics_bsp is not None:
-        points: list[Vector3] = []
-        _bsp_vertices(setup.physics_bsp.root_node, points)
-        return BBox.around(points)
-    points = []
+        return bsp_bound_box(setup.physics_bsp)
+    points: list[Vector3] = []
     for sphere in setup.spheres:
         r = Vector3(sphere.radius, sphere.radius, sphere.radius)
         points += [sphere.center - r, sphere.center + r]
@@ -74,24 +84,33 @@ class PhysicsPart:
 
     ``pos`` is the part's position: the body's cell id (``CPartArray::SetCellID``) and the body's
     frame combined with the part's animation or placement frame (``CPartArray::UpdateParts``).
-    ``gfxobj_scale`` is the body's scale (``CPartArray::SetScaleInternal``); the collision code
-    reads it, the cell code does not.
+    ``gfxobj_scale`` is the body's scale times the part's default scale
+    (``CPartArray::SetScaleInternal``); the collision code reads it, the cell code does not.
+    ``part`` is the setup's part description (None: the setup is the one part).
 
     Retail: CPhysicsPart::makePhysicsPart @ 0x0050E760 (acclient.c:315550)
     """
 
     __slots__ = ("bounding_box", "drawing_sphere", "gfxobj_scale", "physics_bsp", "physics_sphere", "pos")
 
-    def __init__(self, setup: Setup) -> None:
+    def __init__(self, setup: Setup, part: SetupPart | None = None) -> None:
         self.pos = Position()
+        if part is not None:
+            self.gfxobj_scale = part.default_scale.copy()
+            box = part.bounding_box
+            self.bounding_box = BBox(box.min, box.max) if box is not None else bsp_bound_box(part.physics_bsp)
+            self.physics_bsp: BSPTree | None = part.physics_bsp
+            self.physics_sphere: Sphere | None = (
+                part.physics_bsp.get_sphere() if part.physics_bsp is not None else None
+            )
+            self.drawing_sphere: Sphere | None = None
+            return
         self.gfxobj_scale = Vector3(1.0, 1.0, 1.0)
         self.bounding_box = gfx_bound_box(setup)
-        self.physics_bsp: BSPTree | None = setup.physics_bsp
-        self.physics_sphere: Sphere | None = (
-            setup.physics_bsp.get_sphere() if setup.physics_bsp is not None else None
-        )
+        self.physics_bsp = setup.physics_bsp
+        self.physics_sphere = setup.physics_bsp.get_sphere() if setup.physics_bsp is not None else None
         sorting = setup.sorting_sphere
-        self.drawing_sphere: Sphere | None = sorting if sorting.radius > 0.0 else None
+        self.drawing_sphere = sorting if sorting.radius > 0.0 else None
 
     def __repr__(self) -> str:
         return f"PhysicsPart({self.pos!r}, box={self.bounding_box!r})"

@@ -7,11 +7,28 @@ from typing import TYPE_CHECKING
 
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
+from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 
 if TYPE_CHECKING:
+    from acphys.geometry.bbox import BBox
     from acphys.geometry.bsp import BSPTree
     from acphys.motion.motion_table import MotionTable
+
+
+@dataclass
+class SetupPart:
+    """One part of a many-part setup: what retail reads from ``CSetup::parts[i]`` (its
+    ``CGfxObj``'s physics BSP and ``gfx_bound_box``), ``default_scale[i]`` and frame ``i`` of the
+    default placement (``placement_frames`` id 0x65, else 0, as ``CPartArray::SetPlacementFrame``
+    picks it). The placement frame is in the body's frame, the box in the part's; both unscaled.
+    """
+
+    physics_bsp: BSPTree | None = None
+    #: ``gfx_bound_box``; None: the box around the physics BSP's polygon vertices (zero box without one).
+    bounding_box: BBox | None = None
+    default_scale: Vector3 = field(default_factory=lambda: Vector3(1.0, 1.0, 1.0))
+    placement_frame: Frame = field(default_factory=Frame)
 
 
 @dataclass
@@ -23,6 +40,10 @@ class Setup:
     ``physics_bsp`` is the solid geometry of a one-part object (retail keeps
     it on the part's ``CGfxObj``; ``has_physics_bsp`` says whether there is one).
     ``motion_table`` stands for ``default_mtable_id``.
+
+    ``parts``, when given, describes every part (retail ``num_parts`` parts); then
+    ``physics_bsp`` must stay None and the setup has a physics BSP when any part has one.
+    Without it the setup has one part at the origin, unscaled, made from ``physics_bsp``.
     """
 
     name: str
@@ -38,10 +59,21 @@ class Setup:
     #: ``sorting_sphere``: what a body without cylspheres shadows into cells with (local, unscaled).
     sorting_sphere: Sphere = field(default_factory=lambda: Sphere(Vector3(), 0.0))
     motion_table: MotionTable | None = None
+    parts: list[SetupPart] | None = None
+
+    def __post_init__(self) -> None:
+        if self.parts is None:
+            return
+        if not self.parts:
+            raise ValueError(f"setup {self.name!r}: parts is empty (leave it None for a one-part setup)")
+        if self.physics_bsp is not None:
+            raise ValueError(f"setup {self.name!r}: physics_bsp is for one-part setups; give it to a part")
 
     @property
     def has_physics_bsp(self) -> bool:
         """Retail ``CSetup::has_physics_bsp``."""
+        if self.parts is not None:
+            return any(part.physics_bsp is not None for part in self.parts)
         return self.physics_bsp is not None
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from acphys.dat.container import DatEntry, DatError, DatFile, DatHeader, DatNode
 from acphys.dat.env_cell import unpack_env_cell, unpack_environment
-from acphys.dat.gfxobj import GfxObjRecord, setup_physics_bsp, unpack_gfxobj
+from acphys.dat.gfxobj import GfxObjRecord, needs_setup_parts, setup_parts, setup_physics_bsp, unpack_gfxobj
 from acphys.dat.motion import unpack_animation, unpack_motion_table
 from acphys.dat.records import (
     REGION_ID,
@@ -32,6 +32,8 @@ __all__ = [
     "RegionRecord",
     "SetupRecord",
     "landblock_terrain",
+    "needs_setup_parts",
+    "setup_parts",
     "setup_physics_bsp",
     "unpack_animation",
     "unpack_env_cell",

@@ -417,6 +417,13 @@ def init_buildings(
         setup = object_setup(record.building_id)
         if setup is None:
             continue
+        if setup.parts is not None:
+            # A BuildingObj holds one part (CBuildingObj::makeBuilding); a shell of several parts
+            # would lose its collision shape, so it is refused rather than built without one.
+            raise DatError(
+                f"building 0x{record.building_id:08X} has a shell of {len(setup.parts)} parts; "
+                "acphys builds one-part building shells only"
+            )
         cell_id = adjust_to_outside(landblock.id, record.frame.origin.copy())
         cell = landblock.get_landcell(cell_id) if cell_id else None
         if cell is None:

@@ -1,5 +1,6 @@
 """Retail ``CGfxObj`` records (0x01xxxxxx): the vertex array, the physics polygons, the physics BSP
-and the sort centre, as ``CGfxObj::Serialize`` reads them; and the physics BSP of a DAT setup.
+and the sort centre, as ``CGfxObj::Serialize`` reads them; and the physics BSP of a one-part DAT
+setup, or the part descriptions of a many-part one.
 
 Record layout (little-endian, no padding anywhere up to the sort centre):
 
@@ -28,7 +29,10 @@ from acphys.geometry.bsp import type_tag as _tag
 from acphys.geometry.plane import Plane
 from acphys.geometry.polygon import Polygon, SidesType
 from acphys.geometry.sphere import Sphere
+from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.part_array import DEFAULT_PLACEMENT_ID
+from acphys.setup import SetupPart
 
 #: ``CGfxObj`` flag bits (the dword after the DID).
 GFXOBJ_HAS_PHYSICS = 0x1
@@ -271,13 +275,85 @@ def setup_physics_bsp(record: SetupRecord, dat: DatFile) -> BSPTree | None:
                 "identity part frames only"
             )
     gfx_id = record.parts[0]
+    gfxobj = _part_gfxobj(what, 0, gfx_id, dat)
+    if gfxobj.physics_bsp is None:
+        raise DatError(f"{what} has a physics BSP flag but its gfxobj {gfx_id:#010x} has no physics data")
+    return gfxobj.physics_bsp
+
+
+def _part_gfxobj(what: str, index: int, gfx_id: int, dat: DatFile) -> GfxObjRecord:
+    """Part ``index``'s GfxObj record ``gfx_id``, read from ``dat``."""
     if gfx_id >> 24 != GFXOBJ_ID_TYPE:
-        raise DatError(f"{what}: part 0 is {gfx_id:#010x}, not a GfxObj (0x01xxxxxx)")
+        raise DatError(f"{what}: part {index} is {gfx_id:#010x}, not a GfxObj (0x01xxxxxx)")
     if dat.lookup(gfx_id) is None:
         raise DatError(f"{what}: no gfxobj {gfx_id:#010x} in {dat.path}")
     gfxobj = unpack_gfxobj(dat.read(gfx_id))
     if gfxobj.did != gfx_id:
         raise DatError(f"record {gfx_id:#010x} holds gfxobj {gfxobj.did:#010x}")
-    if gfxobj.physics_bsp is None:
-        raise DatError(f"{what} has a physics BSP flag but its gfxobj {gfx_id:#010x} has no physics data")
-    return gfxobj.physics_bsp
+    return gfxobj
+
+
+def default_placement(record: SetupRecord) -> tuple[int, list[Frame]] | None:
+    """The placement ``CPartArray::SetPlacementFrame(0x65)`` picks: 0x65 if the setup has it, else
+    placement 0, else none (retail then leaves the parts unplaced).
+
+    Retail: CPartArray::SetPlacementFrame @ 0x005193D0 (acclient.c:326817)
+    """
+    for key in (DEFAULT_PLACEMENT_ID, 0):
+        frames = record.placement_frames.get(key)
+        if frames is not None:
+            return key, frames
+    return None
+
+
+def needs_setup_parts(record: SetupRecord) -> bool:
+    """Whether ``record`` needs :func:`setup_parts`: it has a physics BSP and more than one part, a
+    part default scale other than 1, or a placement frame that moves its part: the setups
+    :func:`setup_physics_bsp` refuses for their shape. Others are one-part setups it reads."""
+    if not record.has_physics_bsp:
+        return False
+    if len(record.parts) != 1:
+        return True
+    if any((s.x, s.y, s.z) != (1.0, 1.0, 1.0) for s in record.default_scale):
+        return True
+    return any(
+        not _is_identity((f.origin.x, f.origin.y, f.origin.z, f.qw, f.qx, f.qy, f.qz))
+        for frames in record.placement_frames.values()
+        for f in frames
+    )
+
+
+def setup_parts(record: SetupRecord, dat: DatFile) -> list[SetupPart]:
+    """Every part of ``record``, read from ``dat``: its GfxObj's physics BSP (None for a GfxObj
+    without physics data) and ``gfx_bound_box``, its default scale (1 without flag 2) and its
+    frame in the default placement (:func:`default_placement`). A setup with no placement 0x65
+    or 0 is refused: retail would leave its parts where they were made, at no frame of the body's.
+
+    Retail: CPartArray::InitParts @ 0x00517F40 (acclient.c:325273)
+    """
+    what = f"setup {record.did:#010x}"
+    if not record.parts:
+        raise DatError(f"{what} has no parts")
+    placement = default_placement(record)
+    if placement is None:
+        raise DatError(f"{what} has no placement frame {DEFAULT_PLACEMENT_ID:#x} or 0 to place its parts by")
+    parts = []
+    for index, gfx_id in enumerate(record.parts):
+        try:
+            gfxobj = _part_gfxobj(what, index, gfx_id, dat)
+        except DatError as error:
+            if not record.has_physics_bsp:
+                raise
+            raise DatError(f"{what} has a physics BSP but part {index} cannot be read: {error}") from None
+        scale = record.default_scale[index].copy() if record.default_scale else Vector3(1.0, 1.0, 1.0)
+        parts.append(
+            SetupPart(
+                physics_bsp=gfxobj.physics_bsp,
+                bounding_box=BBox(gfxobj.gfx_bound_box.min, gfxobj.gfx_bound_box.max),
+                default_scale=scale,
+                placement_frame=placement[1][index].copy(),
+            )
+        )
+    if record.has_physics_bsp and all(part.physics_bsp is None for part in parts):
+        raise DatError(f"{what} has a physics BSP flag but none of its parts' gfxobjs has physics data")
+    return parts

@@ -17,7 +17,7 @@ from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
-from acphys.setup import Setup
+from acphys.setup import Setup, SetupPart
 from acphys.world.terrain import HEIGHT_TABLE_SIZE, NUM_VERTICES, LandBlockStruct, set_height_table
 
 #: ``CSetup`` flag bits, the first dword of ``CSetup::UnPack``'s body.
@@ -145,12 +145,18 @@ class SetupRecord:
     def has_physics_bsp(self) -> bool:
         return bool(self.flags & SETUP_HAS_PHYSICS_BSP)
 
-    def to_setup(self, name: str | None = None, physics_bsp: BSPTree | None = None) -> Setup:
+    def to_setup(
+        self,
+        name: str | None = None,
+        physics_bsp: BSPTree | None = None,
+        parts: list[SetupPart] | None = None,
+    ) -> Setup:
         """The physics view of this record as an :class:`acphys.setup.Setup`.
 
         The physics BSP lives on the part's GfxObj (read it with
-        :func:`acphys.dat.gfxobj.setup_physics_bsp` and pass it in); the motion table is a
-        separate record, left unset here.
+        :func:`acphys.dat.gfxobj.setup_physics_bsp` and pass it in), or, for a many-part setup,
+        on the parts (read them with :func:`acphys.dat.gfxobj.setup_parts`); the motion table is
+        a separate record, left unset here.
         """
         return Setup(
             name=name if name is not None else f"{self.did:#010x}",
@@ -163,6 +169,7 @@ class SetupRecord:
             allow_free_heading=self.allow_free_heading,
             sorting_sphere=self.sorting_sphere.copy(),
             physics_bsp=physics_bsp,
+            parts=list(parts) if parts is not None else None,
         )
 
 

@@ -21,7 +21,7 @@ from acphys.dat.env_cell import (
     unpack_env_cell,
     unpack_environment,
 )
-from acphys.dat.gfxobj import GfxObjRecord, setup_physics_bsp, unpack_gfxobj
+from acphys.dat.gfxobj import GfxObjRecord, needs_setup_parts, setup_parts, setup_physics_bsp, unpack_gfxobj
 from acphys.dat.landblock_info import LandBlockInfoRecord, unpack_landblock_info
 from acphys.dat.motion import unpack_animation, unpack_motion_table
 from acphys.dat.records import SetupRecord
@@ -32,7 +32,7 @@ from acphys.motion.animation import Animation
 from acphys.motion.motion_table import MotionTable
 from acphys.scenario import values as read
 from acphys.scenario.values import Ctx
-from acphys.setup import Setup
+from acphys.setup import Setup, SetupPart
 from acphys.world.env_cell import EnvCell, Environment
 from acphys.world.terrain import LandBlockStruct
 
@@ -66,6 +66,8 @@ class RetailData:
         self._setups: dict[int, SetupRecord] = {}
         #: Each setup's physics BSP (from its part's GfxObj), shared by the setups built from it.
         self._physics_bsps: dict[int, BSPTree | None] = {}
+        #: The part descriptions of the setups ``needs_setup_parts`` picks (instead of a physics BSP).
+        self._setup_parts: dict[int, list[SetupPart]] = {}
         self._animations: dict[int, Animation] = {}
         self._motion_tables: dict[int, MotionTable] = {}
         self._gfxobjs: dict[int, GfxObjRecord] = {}
@@ -124,11 +126,14 @@ class RetailData:
                     key, f"{self.portal.path}: record {setup_id:#010x} holds setup {record.did:#010x}"
                 )
             try:
-                self._physics_bsps[setup_id] = setup_physics_bsp(record, self.portal)
+                if needs_setup_parts(record):
+                    self._setup_parts[setup_id] = setup_parts(record, self.portal)
+                else:
+                    self._physics_bsps[setup_id] = setup_physics_bsp(record, self.portal)
             except DatError as error:
                 raise self.ctx.fail(key, f"{self.portal.path}: {error}") from None
             self._setups[setup_id] = record
-        return record.to_setup(name, self._physics_bsps[setup_id])
+        return record.to_setup(name, self._physics_bsps.get(setup_id), self._setup_parts.get(setup_id))
 
     def motion_table(self, key: str, table_id: int) -> MotionTable:
         """The portal's motion table ``table_id`` with its animations (both kept once read;

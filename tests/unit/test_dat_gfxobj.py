@@ -13,7 +13,7 @@ import pytest
 import acphys
 from acphys.dat import DatError, DatFile, unpack_setup
 from acphys.dat.gfxobj import _compressed_u32, setup_physics_bsp, unpack_gfxobj
-from acphys.dat.records import _Reader
+from acphys.dat.records import Reader
 from acphys.geometry.bsp import NODE_TYPE_BOTH_CHILDREN, BSPLeaf, BSPNode
 from acphys.geometry.bsp_builder import build_box_tree
 from acphys.geometry.sphere import Sphere
@@ -49,11 +49,11 @@ def test_compressed_counts_take_one_two_or_four_bytes() -> None:
     # high byte; 0xC0 flag, bits 16-29 in two bytes, then a u16 of the low bits.
     for value, size in ((0x7F, 1), (0x80, 2), (0x3FFF, 2), (0x4000, 4), (0x3FFFFFFF, 4)):
         data = compressed_u32(value) + b"\xaa"
-        reader = _Reader(data, "test")
+        reader = Reader(data, "test")
         assert _compressed_u32(reader) == value
         assert reader.pos == size
-    assert _compressed_u32(_Reader(bytes([0x81, 0x02]), "t")) == 0x102
-    assert _compressed_u32(_Reader(bytes([0xC1, 0x02, 0x04, 0x03]), "t")) == 0x01020304
+    assert _compressed_u32(Reader(bytes([0x81, 0x02]), "t")) == 0x102
+    assert _compressed_u32(Reader(bytes([0xC1, 0x02, 0x04, 0x03]), "t")) == 0x01020304
 
 
 def test_box_gfxobj_reads_vertices_polygons_and_bsp() -> None:

@@ -43,9 +43,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from acphys.dat.container import DatError
-from acphys.dat.gfxobj import NODE_CHILDREN, _leaf, _poly_refs, _polygon, _vertex_array
+from acphys.dat.gfxobj import NODE_CHILDREN, read_leaf, read_poly_refs, read_polygon, read_vertex_array
 from acphys.dat.landblock_info import LandBlockInfoRecord, ObjectSetup
-from acphys.dat.records import _Reader
+from acphys.dat.records import Reader
 from acphys.geometry.bsp import NODE_TYPE_LEAF, NODE_TYPE_PORTAL, BSPLeaf, BSPNode, BSPTree
 from acphys.geometry.plane import Plane
 from acphys.geometry.polygon import Polygon
@@ -159,7 +159,7 @@ class EnvCellRecord:
         return self.cell_id & 0xFFFF0000
 
 
-def _tree(reader: _Reader, polygons: list[Polygon], tree_type: int, what: str) -> BSPTree:
+def _tree(reader: Reader, polygons: list[Polygon], tree_type: int, what: str) -> BSPTree:
     """One tree; ``polygons`` are the ones its indices name (``BSPNODE::pack_poly``).
 
     Retail: BSPTREE::UnPack @ 0x00539830 (acclient.c:360685)
@@ -170,7 +170,7 @@ def _tree(reader: _Reader, polygons: list[Polygon], tree_type: int, what: str) -
         raise DatError(f"{reader.what}: the {what} nests too deep to read") from None
 
 
-def _child(reader: _Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
+def _child(reader: Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
     """A tag dword, then a portal, a leaf or an interior node.
 
     Retail: BSPNODE::UnPackChild @ 0x0053C770 (acclient.c:363343)
@@ -180,12 +180,12 @@ def _child(reader: _Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
         return _portal(reader, polygons, tree_type)
     if tag == NODE_TYPE_LEAF:
         if tree_type == PHYSICS_BSP:
-            return _leaf(reader, polygons)
+            return read_leaf(reader, polygons)
         return BSPLeaf(int(reader.unpack("i")[0]))
     return _node(reader, polygons, tree_type, tag)
 
 
-def _node(reader: _Reader, polygons: list[Polygon], tree_type: int, tag: int) -> BSPNode:
+def _node(reader: Reader, polygons: list[Polygon], tree_type: int, tag: int) -> BSPNode:
     """An interior node after its tag: plane, children, then (physics) its sphere or (drawing)
     its sphere and polygon indices; a cell-tree node stores nothing more.
 
@@ -205,11 +205,11 @@ def _node(reader: _Reader, polygons: list[Polygon], tree_type: int, tag: int) ->
     if tree_type == CELL_BSP:
         return BSPNode(plane, pos, neg, type=tag)
     sphere = reader.sphere()
-    polys = _poly_refs(reader, polygons, "drawing node") if tree_type == DRAWING_BSP else None
+    polys = read_poly_refs(reader, polygons, "drawing node") if tree_type == DRAWING_BSP else None
     return BSPNode(plane, pos, neg, sphere, polys, type=tag)
 
 
-def _portal(reader: _Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
+def _portal(reader: Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
     """A ``PORT`` node after its tag: plane, both children; in a drawing tree then its sphere,
     polygon and portal counts, polygon indices and {polygon index, portal index} pairs.
 
@@ -235,27 +235,27 @@ def _portal(reader: _Reader, polygons: list[Polygon], tree_type: int) -> BSPNode
 
 
 def _polygons(
-    reader: _Reader, count: int, vertices: list[Vector3], what: str
+    reader: Reader, count: int, vertices: list[Vector3], what: str
 ) -> tuple[list[int], list[Polygon]]:
     if count * 12 > len(reader.data) - reader.pos:
         raise DatError(f"{reader.what}: {what} count {count} overruns the record")
     ids: list[int] = []
     polygons: list[Polygon] = []
     for _ in range(count):
-        poly_id, polygon = _polygon(reader, vertices)
+        poly_id, polygon = read_polygon(reader, vertices)
         ids.append(poly_id)
         polygons.append(polygon)
     return ids, polygons
 
 
-def _cell_struct(reader: _Reader) -> CellStructRecord:
+def _cell_struct(reader: Reader) -> CellStructRecord:
     """One cell struct (layout in the module docstring).
 
     Retail: CCellStruct::UnPack @ 0x00533D00 (acclient.c:355822)
     """
     cellstruct_id, num_polygons, num_physics, num_portals = reader.unpack("4I")
     where = f"cell struct {cellstruct_id}"
-    vertices = _vertex_array(reader)
+    vertices = read_vertex_array(reader)
     poly_ids, polygons = _polygons(reader, int(num_polygons), vertices, f"{where} polygon")
     if int(num_portals) * 2 > len(reader.data) - reader.pos:
         raise DatError(f"{reader.what}: {where} portal count {num_portals} overruns the record")
@@ -280,14 +280,14 @@ def unpack_environment(data: bytes) -> EnvironmentRecord:
 
     Retail: CEnvironment::UnPack @ 0x00530CF0 (acclient.c:352987)
     """
-    reader = _Reader(data, "environment")
+    reader = Reader(data, "environment")
     did = reader.u32()
     reader.what = f"environment {did:#010x}"
     cells = [_cell_struct(reader) for _ in range(reader.count(16, "cell struct"))]
     return EnvironmentRecord(did, cells)
 
 
-def _cell_portal(reader: _Reader) -> CellPortalRecord:
+def _cell_portal(reader: Reader) -> CellPortalRecord:
     """Retail: CCellPortal::UnPack @ 0x0053BAB0 (acclient.c:362378)"""
     flags, poly_id, other_cell, other_portal = reader.unpack("HHHh")
     return CellPortalRecord(int(flags), int(poly_id), int(other_cell), int(other_portal))
@@ -298,7 +298,7 @@ def unpack_env_cell(data: bytes) -> EnvCellRecord:
 
     Retail: CEnvCell::UnPack @ 0x0052D470 (acclient.c:349133)
     """
-    reader = _Reader(data, "env cell")
+    reader = Reader(data, "env cell")
     did = reader.u32()
     reader.what = f"env cell {did:#010x}"
     flags = reader.u32()

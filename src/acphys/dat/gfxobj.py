@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from acphys.dat.container import DatError, DatFile
-from acphys.dat.records import SetupRecord, _Reader
+from acphys.dat.records import Reader, SetupRecord
 from acphys.geometry.bbox import BBox
 from acphys.geometry.bsp import NODE_TYPE_LEAF, NODE_TYPE_PORTAL, BSPLeaf, BSPNode, BSPPolygon, BSPTree
 from acphys.geometry.bsp import type_tag as _tag
@@ -80,7 +80,7 @@ class GfxObjRecord:
         return self.physics_bsp.get_sphere() if self.physics_bsp is not None else None
 
 
-def _compressed_u32(reader: _Reader) -> int:
+def _compressed_u32(reader: Reader) -> int:
     """Retail: SB_As32Bit_Compressed::Serialize @ 0x005BE430 (acclient.c:489675)"""
     first = reader.take(1)[0]
     if not first & 0x80:
@@ -92,7 +92,7 @@ def _compressed_u32(reader: _Reader) -> int:
     return ((first & 0x3F) << 8 | second) << 16 | low
 
 
-def _vertex_array(reader: _Reader) -> list[Vector3]:
+def read_vertex_array(reader: Reader) -> list[Vector3]:
     """The vertex type, a count, then per vertex: u16 id, u16 UV count, position, normal, UVs.
 
     Retail: CVertexArray::UnPack @ 0x0053C030 (acclient.c:362801)
@@ -106,7 +106,7 @@ def _vertex_array(reader: _Reader) -> list[Vector3]:
     return positions
 
 
-def _sw_vertex(reader: _Reader) -> Vector3:
+def _sw_vertex(reader: Reader) -> Vector3:
     """One vertex; the position is kept, the stored id, normal and UVs are skipped.
 
     Retail: CSWVertex::UnPack @ 0x0053DE50 (acclient.c:364860)
@@ -117,7 +117,7 @@ def _sw_vertex(reader: _Reader) -> Vector3:
     return position
 
 
-def _polygon(reader: _Reader, vertices: list[Vector3]) -> tuple[int, Polygon]:
+def read_polygon(reader: Reader, vertices: list[Vector3]) -> tuple[int, Polygon]:
     """u16 poly id, u8 point count, u8 stippling, i32 sides type, u16 pos / neg surface, u16
     vertex ids, then (unless stippling 4) pos UV indices and (sides type 2, unless stippling 8)
     neg UV indices, a byte a point. The plane comes from ``make_plane`` (:class:`Polygon`).
@@ -144,7 +144,7 @@ def _polygon(reader: _Reader, vertices: list[Vector3]) -> tuple[int, Polygon]:
     return int(poly_id), polygon
 
 
-def _poly_refs(reader: _Reader, polygons: list[Polygon], what: str) -> list[BSPPolygon]:
+def read_poly_refs(reader: Reader, polygons: list[Polygon], what: str) -> list[BSPPolygon]:
     """A dword count and that many u16 indices into the physics polygons."""
     refs: list[BSPPolygon] = []
     for _ in range(reader.count(2, f"{what} polygon")):
@@ -158,7 +158,7 @@ def _poly_refs(reader: _Reader, polygons: list[Polygon], what: str) -> list[BSPP
     return refs
 
 
-def _leaf(reader: _Reader, polygons: list[Polygon]) -> BSPLeaf:
+def read_leaf(reader: Reader, polygons: list[Polygon]) -> BSPLeaf:
     """A physics leaf after its tag: i32 leaf index, dword solid, sphere, polygon ids.
 
     Retail: BSPLEAF::UnPackLeaf @ 0x0053D4A0 (acclient.c:364132)
@@ -166,11 +166,11 @@ def _leaf(reader: _Reader, polygons: list[Polygon]) -> BSPLeaf:
     leaf_index = int(reader.unpack("i")[0])
     solid = reader.u32()
     sphere = reader.sphere()
-    polys = _poly_refs(reader, polygons, f"leaf {leaf_index}")
+    polys = read_poly_refs(reader, polygons, f"leaf {leaf_index}")
     return BSPLeaf(leaf_index, bool(solid), sphere, polys)
 
 
-def _node(reader: _Reader, polygons: list[Polygon], tag: int) -> BSPNode:
+def _node(reader: Reader, polygons: list[Polygon], tag: int) -> BSPNode:
     """A physics interior node after its tag: plane (normal, d), the children its tag names
     (pos first), then its sphere; physics nodes store no polygons.
 
@@ -190,20 +190,20 @@ def _node(reader: _Reader, polygons: list[Polygon], tag: int) -> BSPNode:
     return BSPNode(plane, pos, neg, reader.sphere(), type=tag)
 
 
-def _child(reader: _Reader, polygons: list[Polygon]) -> BSPNode:
+def _child(reader: Reader, polygons: list[Polygon]) -> BSPNode:
     """A tag dword, then a leaf or an interior node (a portal has no place in a physics tree).
 
     Retail: BSPNODE::UnPackChild @ 0x0053C770 (acclient.c:363343)
     """
     tag = reader.u32()
     if tag == NODE_TYPE_LEAF:
-        return _leaf(reader, polygons)
+        return read_leaf(reader, polygons)
     if tag == NODE_TYPE_PORTAL:
         raise DatError(f"{reader.what}: a PORT node at byte {reader.pos - 4} in the physics BSP")
     return _node(reader, polygons, tag)
 
 
-def _physics_bsp(reader: _Reader, polygons: list[Polygon]) -> BSPTree:
+def _physics_bsp(reader: Reader, polygons: list[Polygon]) -> BSPTree:
     """The tree is its root child.
 
     Retail: BSPTREE::UnPack @ 0x00539830 (acclient.c:360685)
@@ -219,7 +219,7 @@ def unpack_gfxobj(data: bytes) -> GfxObjRecord:
 
     Retail: CGfxObj::Serialize @ 0x00534970 (acclient.c:356682)
     """
-    reader = _Reader(data, "gfxobj")
+    reader = Reader(data, "gfxobj")
     did = reader.u32()
     reader.what = f"gfxobj {did:#010x}"
     flags = reader.u32()
@@ -227,7 +227,7 @@ def unpack_gfxobj(data: bytes) -> GfxObjRecord:
     if num_surfaces * 4 > len(data) - reader.pos:
         raise DatError(f"{reader.what}: surface count {num_surfaces} overruns the record")
     surfaces = [reader.u32() for _ in range(num_surfaces)]
-    vertices = _vertex_array(reader)
+    vertices = read_vertex_array(reader)
     polygons: list[Polygon] = []
     poly_ids: list[int] = []
     bsp = None
@@ -236,7 +236,7 @@ def unpack_gfxobj(data: bytes) -> GfxObjRecord:
         if num_polys * 12 > len(data) - reader.pos:
             raise DatError(f"{reader.what}: physics polygon count {num_polys} overruns the record")
         for _ in range(num_polys):
-            poly_id, polygon = _polygon(reader, vertices)
+            poly_id, polygon = read_polygon(reader, vertices)
             poly_ids.append(poly_id)
             polygons.append(polygon)
         bsp = _physics_bsp(reader, polygons)

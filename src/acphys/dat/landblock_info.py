@@ -20,7 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from acphys.dat.container import DatError
-from acphys.dat.records import _Reader
+from acphys.dat.records import Reader
 from acphys.math.cell_id import adjust_to_outside, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
@@ -94,7 +94,7 @@ class LandBlockInfoRecord:
         return self.restriction_table.get(landcell_id, 0)
 
 
-def _bld_portal(reader: _Reader, block_mask: int) -> BldPortalRecord:
+def _bld_portal(reader: Reader, block_mask: int) -> BldPortalRecord:
     """Retail: CBldPortal::UnPack @ 0x0053BC40 (acclient.c:362498)"""
     flags, other_cell, other_portal = reader.unpack("HHh")
     num_stabs = int(reader.unpack("H")[0])
@@ -109,7 +109,7 @@ def _bld_portal(reader: _Reader, block_mask: int) -> BldPortalRecord:
     )
 
 
-def _restriction_table(reader: _Reader) -> dict[int, int]:
+def _restriction_table(reader: Reader) -> dict[int, int]:
     """A ``PackableHashTable<unsigned long, unsigned long>``: count and bucket count, then pairs.
 
     Retail fails the record when the bucket count is 0 but the count is not, and on a repeated
@@ -145,7 +145,7 @@ def unpack_landblock_info(data: bytes) -> LandBlockInfoRecord:
 
     Retail: CLandBlockInfo::UnPack @ 0x0052ECA0 (acclient.c:351048)
     """
-    reader = _Reader(data, "landblock info")
+    reader = Reader(data, "landblock info")
     did = reader.u32()
     reader.what = f"landblock info {did:#010x}"
     if did & 0xFFFF != LANDBLOCK_INFO_LOW:

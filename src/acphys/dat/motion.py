@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from acphys.dat.container import DatError
-from acphys.dat.records import _Reader
+from acphys.dat.records import Reader
 from acphys.math.vector import Vector3
 from acphys.motion import anim_hooks as hooks
 from acphys.motion.animation import Animation, AnimData, AnimFrame
@@ -27,7 +27,7 @@ MOTION_HAS_OMEGA = 0x2
 GFXOBJ_ID_TYPE = 0x01000000
 
 
-def _packed_data_id(reader: _Reader, known_type: int) -> int:
+def _packed_data_id(reader: Reader, known_type: int) -> int:
     """A data id stored as a u16 (``known_type + value``) or, with the u16's top bit set, as
     two u16s (``known_type + ((first & 0x3FFF) << 16 | second)``).
 
@@ -41,21 +41,21 @@ def _packed_data_id(reader: _Reader, known_type: int) -> int:
     return known_type + first
 
 
-def _u32s(reader: _Reader, count: int) -> list[int]:
+def _u32s(reader: Reader, count: int) -> list[int]:
     return [reader.u32() for _ in range(count)]
 
 
-def _f32s(reader: _Reader, count: int) -> list[float]:
+def _f32s(reader: Reader, count: int) -> list[float]:
     return [reader.f32() for _ in range(count)]
 
 
-def _tween(reader: _Reader, with_part: bool) -> list[int | float]:
+def _tween(reader: Reader, with_part: bool) -> list[int | float]:
     """{part,} start, end, time of the look hooks."""
     head: list[int | float] = [reader.u32()] if with_part else []
     return head + _f32s(reader, 3)
 
 
-def _hook_body(reader: _Reader, kind: int, direction: int) -> hooks.AnimHook | None:
+def _hook_body(reader: Reader, kind: int, direction: int) -> hooks.AnimHook | None:
     """The hook of type ``kind``, its body read (None for a type retail builds no hook for)."""
     d = {"direction": direction}
     T = hooks.AnimHookType
@@ -124,7 +124,7 @@ def _hook_body(reader: _Reader, kind: int, direction: int) -> hooks.AnimHook | N
     raise DatError(f"{reader.what}: unknown animation hook type {kind} at byte {reader.pos - 8}")
 
 
-def unpack_hook(reader: _Reader) -> hooks.AnimHook | None:
+def unpack_hook(reader: Reader) -> hooks.AnimHook | None:
     """One hook: type, direction, the type's fields, then alignment to a dword.
 
     Retail's switch has no case for AnimDone (4): it reads the type and direction and yields
@@ -144,7 +144,7 @@ def unpack_hook(reader: _Reader) -> hooks.AnimHook | None:
     return hook
 
 
-def _anim_frame(reader: _Reader, num_parts: int) -> AnimFrame:
+def _anim_frame(reader: Reader, num_parts: int) -> AnimFrame:
     """Retail: AnimFrame::UnPack @ 0x0051F8E0 (acclient.c:333869)"""
     frames = [reader.frame() for _ in range(num_parts)]
     found = [unpack_hook(reader) for _ in range(reader.count(8, "hook"))]
@@ -157,7 +157,7 @@ def unpack_animation(data: bytes) -> Animation:
 
     Retail: CAnimation::UnPack @ 0x0051FB50 (acclient.c:334085)
     """
-    reader = _Reader(data, "animation")
+    reader = Reader(data, "animation")
     did = reader.u32()
     reader.what = f"animation {did:#010x}"
     bitfield = reader.u32()
@@ -171,7 +171,7 @@ def unpack_animation(data: bytes) -> Animation:
         raise DatError(f"{reader.what}: {error}") from None
 
 
-def _anim_data(reader: _Reader, load_animation: Callable[[int], Animation]) -> AnimData:
+def _anim_data(reader: Reader, load_animation: Callable[[int], Animation]) -> AnimData:
     """Retail: AnimData::UnPack @ 0x00525E50 (acclient.c:341178)"""
     anim_id = reader.u32()
     low_frame, high_frame = (int(v) for v in reader.unpack("2i"))
@@ -183,7 +183,7 @@ def _anim_data(reader: _Reader, load_animation: Callable[[int], Animation]) -> A
         raise DatError(f"{reader.what}: animation {anim_id:#010x}: {error}") from None
 
 
-def _motion_data(reader: _Reader, load_animation: Callable[[int], Animation]) -> tuple[int, MotionData]:
+def _motion_data(reader: Reader, load_animation: Callable[[int], Animation]) -> tuple[int, MotionData]:
     """One keyed ``MotionData``: key, animation count (byte), bitfield (byte), flag byte,
     padding to a dword, the animations, then velocity (flag bit 0) and omega (flag bit 1);
     an absent vector is zero.
@@ -200,7 +200,7 @@ def _motion_data(reader: _Reader, load_animation: Callable[[int], Animation]) ->
 
 
 def _motion_hash(
-    reader: _Reader, load_animation: Callable[[int], Animation], name: str
+    reader: Reader, load_animation: Callable[[int], Animation], name: str
 ) -> dict[int, MotionData]:
     """A count, then that many keyed MotionData; a repeated key keeps the last one (retail
     pushes each onto the front of its hash bucket, so lookups find the newest)."""
@@ -217,7 +217,7 @@ def unpack_motion_table(data: bytes, load_animation: Callable[[int], Animation])
 
     Retail: CMotionTable::UnPack @ 0x005238C0 (acclient.c:338603)
     """
-    reader = _Reader(data, "motion table")
+    reader = Reader(data, "motion table")
     did = reader.u32()
     reader.what = f"motion table {did:#010x}"
     default_style = reader.u32()

@@ -31,7 +31,7 @@ REGION_VERSION = 3
 REGION_ID = 0x13000000
 
 
-class _Reader:
+class Reader:
     """Sequential little-endian reads over one record, with DatErrors naming record and byte."""
 
     __slots__ = ("data", "pos", "what")
@@ -173,7 +173,7 @@ class SetupRecord:
         )
 
 
-def _locations(reader: _Reader, name: str) -> dict[int, LocationType]:
+def _locations(reader: Reader, name: str) -> dict[int, LocationType]:
     """A ``LongHash<LocationType>``: a count, then {key, part id, frame} each."""
     result: dict[int, LocationType] = {}
     for _ in range(reader.count(36, name)):
@@ -194,7 +194,7 @@ def unpack_setup(data: bytes) -> SetupRecord:
 
     Retail: CSetup::UnPack @ 0x00520C50 (acclient.c:335520)
     """
-    reader = _Reader(data, "setup")
+    reader = Reader(data, "setup")
     did = reader.u32()
     reader.what = f"setup {did:#010x}"
     flags = reader.u32()
@@ -253,7 +253,7 @@ class RegionRecord:
     height_table: tuple[float, ...]
 
 
-def _pstring(reader: _Reader) -> str:
+def _pstring(reader: Reader) -> str:
     """A u16 length (0xFFFF: a u32 length follows), the bytes, then 4-byte alignment.
 
     Retail: AC1Legacy::PStringBase<char>::UnPack @ 0x004FC8C0 (acclient.c:296508)
@@ -275,7 +275,7 @@ def unpack_region(data: bytes) -> RegionRecord:
 
     Retail: CRegionDesc::UnPack @ 0x004FF440 (acclient.c:299775)
     """
-    reader = _Reader(data, "region")
+    reader = Reader(data, "region")
     did = reader.u32()
     reader.what = f"region {did:#010x}"
     region_number = reader.u32()
@@ -314,7 +314,7 @@ def unpack_landblock(data: bytes) -> LandBlockRecord:
 
     Retail: CLandBlock::UnPack @ 0x0052F310 (acclient.c:351520)
     """
-    reader = _Reader(data, "landblock")
+    reader = Reader(data, "landblock")
     did = reader.u32()
     reader.what = f"landblock {did:#010x}"
     if did & 0xFFFF != 0xFFFF:

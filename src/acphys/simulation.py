@@ -12,18 +12,48 @@ from acphys.constants import MIN_QUANTUM
 from acphys.physics_obj import PhysicsObj
 from acphys.world.world import World
 
+#: ``CObjectMaint::object_table``, the table ``CPhysics::UseTime`` walks, is a
+#: ``LongHash`` of 128 buckets with a key shift of 8; it never grows.
+#: Retail: CObjectMaint::CObjectMaint @ 0x005085D0 (acclient.c:310011)
+OBJECT_TABLE_BUCKETS = 128
+OBJECT_TABLE_KEY_SHIFT = 8
+
+
+def object_table_bucket(object_id: int) -> int:
+    """The object-table bucket of ``object_id``: ``(id ^ (id >> 8)) & 127``.
+
+    Retail: CObjectMaint::AddObject @ 0x00507CE0 (acclient.c:309355)
+    """
+    return (object_id ^ (object_id >> OBJECT_TABLE_KEY_SHIFT)) & (OBJECT_TABLE_BUCKETS - 1)
+
 
 class Physics:
-    """Retail ``CPhysics``: the set of bodies the clock updates, in insertion order."""
+    """Retail ``CPhysics``: the bodies the clock updates, in the order of retail's object table.
+
+    ``CPhysics::UseTime`` walks ``CObjectMaint::object_table`` bucket by
+    bucket (``HashBaseIter::Next``, acclient.c:263092), and ``AddObject``
+    puts a new object at the head of its bucket's chain. So bodies run in
+    ascending bucket order and, within a bucket, newest first. Which body
+    moves first decides who sees whom where bodies meet; with ids counting up
+    from 0x80000001, the first 127 bodies run in the order they were added.
+    """
 
     def __init__(self, world: World) -> None:
         self.world = world
-        self.objects: list[PhysicsObj] = []
+        self._buckets: list[list[PhysicsObj]] = [[] for _ in range(OBJECT_TABLE_BUCKETS)]
+        self._order: list[PhysicsObj] = []
         #: ``last_update``: when the bodies were last run.
         self.last_update = world.cur_time
 
     def add(self, obj: PhysicsObj) -> None:
-        self.objects.append(obj)
+        """Put ``obj`` at the head of its bucket (retail ``CObjectMaint::AddObject``)."""
+        self._buckets[object_table_bucket(obj.id)].insert(0, obj)
+        self._order = [body for bucket in self._buckets for body in bucket]
+
+    @property
+    def objects(self) -> list[PhysicsObj]:
+        """The bodies in the order ``use_time`` runs them."""
+        return list(self._order)
 
     def use_time(self) -> bool:
         """Run every body's ``update_object`` once at least MIN_QUANTUM has passed.
@@ -40,7 +70,7 @@ class Physics:
             return False
         if elapsed < MIN_QUANTUM:
             return False
-        for obj in self.objects:
+        for obj in self._order:
             obj.update_object()
         self.last_update = self.world.cur_time
         return True

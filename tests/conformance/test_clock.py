@@ -7,9 +7,14 @@ import pytest
 from acphys.constants import MIN_QUANTUM, float32
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransientState as TS
+from acphys.math.cell_id import outdoor_cell_id
+from acphys.math.frame import Frame
+from acphys.math.position import Position
 from acphys.math.vector import Vector3
-from acphys.simulation import Physics, Simulation, driver_tick_seconds
-from support import place
+from acphys.part_array import PartArray
+from acphys.physics_obj import PhysicsObj
+from acphys.simulation import Physics, Simulation, driver_tick_seconds, object_table_bucket
+from support import LANDBLOCK, human_setup, place
 
 
 def _quanta(body) -> list[float]:
@@ -212,3 +217,62 @@ class TestUseTime:
         seen = _quanta(body)
         sim.run()
         assert seen == pytest.approx([0.04] * 25, abs=1e-8)
+
+
+class TestObjectTableOrder:
+    """CPhysics::UseTime walks CObjectMaint::object_table (acclient.c:311372-311378).
+
+    The table has 128 buckets with key shift 8 (CObjectMaint::CObjectMaint, acclient.c:310011):
+    AddObject puts an object at the head of bucket ``127 & (id ^ (id >> 8))``
+    (acclient.c:309360-309362), and HashBaseIter::Next walks a chain, then the next
+    bucket up (acclient.c:263092).
+    """
+
+    @staticmethod
+    def _body(world, name, object_id, x):
+        body = PhysicsObj(world, name, PartArray(human_setup()), object_id)
+        point = Vector3(x, 96.0, 50.0)
+        assert body.enter_world(Position(outdoor_cell_id(LANDBLOCK, point), Frame.from_heading(point, 0.0)))
+        return body
+
+    @pytest.mark.parametrize(
+        ("object_id", "bucket"),
+        [
+            # 0x50000001 ^ 0x00500000 = 0x50500001 → 0x01.
+            (0x50000001, 1),
+            # 0x80000080 ^ 0x00800000 = 0x80800080 → 0x80 & 0x7F = 0.
+            (0x80000080, 0),
+            # 0x50000181 ^ 0x00500001 = 0x50500180 → 0x180 & 0x7F = 0.
+            (0x50000181, 0),
+            # 0xFFFFFFFF ^ 0x00FFFFFF = 0xFF000000 → 0.
+            (0xFFFFFFFF, 0),
+            # 0x8000007F ^ 0x00800000 = 0x8080007F → 0x7F.
+            (0x8000007F, 127),
+        ],
+    )
+    def test_buckets(self, object_id, bucket):
+        assert object_table_bucket(object_id) == bucket
+
+    def test_bodies_run_by_bucket_and_newest_first_within_one(self, world):
+        a = self._body(world, "a", 0x50000001, 90.0)  # bucket 1
+        b = self._body(world, "b", 0x80000080, 94.0)  # bucket 0
+        c = self._body(world, "c", 0x50000181, 98.0)  # bucket 0, added after b: ahead of it
+        physics = Physics(world)
+        for body in (a, b, c):
+            physics.add(body)
+        ran: list[str] = []
+        for body in (a, b, c):
+            body.observer = lambda body, _quantum: ran.append(body.name)
+        world.cur_time = 0.05
+        assert physics.use_time() is True
+        assert ran == ["c", "b", "a"]
+        assert [body.name for body in physics.objects] == ["c", "b", "a"]
+
+    def test_ids_counting_up_from_0x80000001_run_in_the_order_they_were_added(self, world):
+        # Buckets 1, 2, ... 127 for 0x80000001 .. 0x8000007F: the first 127 bodies keep their order.
+        bodies = [self._body(world, f"b{i}", None, 20.0 + i) for i in range(5)]
+        assert [body.id for body in bodies] == [0x80000001 + i for i in range(5)]
+        physics = Physics(world)
+        for body in bodies:
+            physics.add(body)
+        assert physics.objects == bodies

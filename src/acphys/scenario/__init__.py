@@ -177,6 +177,7 @@ def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
 
 BODY_KEYS = (
     "name",
+    "id",
     "setup",
     "landblock",
     "origin",
@@ -245,7 +246,11 @@ def _read_body(
         )
     heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
 
-    body = PhysicsObj(world, name, PartArray(setup))
+    body_id = read.object_id(ctx, f"{key}.id", table["id"]) if "id" in table else None
+    owner = world.get_object(body_id) if body_id is not None else None
+    if owner is not None:
+        raise ctx.fail(f"{key}.id", f"0x{body_id:08X} is already the id of {owner.name!r}")
+    body = PhysicsObj(world, name, PartArray(setup), body_id)
     if "state" in table:
         body.state = read.state(ctx, f"{key}.state", table["state"])
     body.friction = read.ranged(ctx, f"{key}.friction", table.get("friction", body.friction), 0.0, 1.0)

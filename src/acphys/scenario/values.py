@@ -87,6 +87,22 @@ def landblock(ctx: Ctx, key: str, value: Any) -> int:
     return number
 
 
+def object_id(ctx: Ctx, key: str, value: Any) -> int:
+    """A 32-bit object id (a server guid such as ``"0x50000001"``), non-zero."""
+    if isinstance(value, str):
+        try:
+            number = int(value, 16)
+        except ValueError:
+            raise ctx.fail(key, f'expected an object id like "0x50000001", got {value!r}') from None
+    elif isinstance(value, int) and not isinstance(value, bool):
+        number = value
+    else:
+        raise ctx.fail(key, f'expected an object id like "0x50000001", got {kind(value)}')
+    if not 0 < number <= 0xFFFFFFFF:
+        raise ctx.fail(key, f"object id {number:#x} is not a non-zero 32-bit id")
+    return number
+
+
 def state(ctx: Ctx, key: str, value: Any) -> PhysicsState:
     if not isinstance(value, list) or not all(isinstance(name, str) for name in value):
         raise ctx.fail(key, f"expected a list of state names, got {kind(value)}")

@@ -41,6 +41,7 @@ from acphys.body.cells import (
     SetPositionFlags,
     SetPositionStruct,
 )
+from acphys.body.children import ChildList, Children
 from acphys.body.effects import Effects
 from acphys.body.managers import ManagerRequests
 from acphys.body.motion import Motion
@@ -103,7 +104,7 @@ OI = member_namespace(ObjectInfoState)
 StepObserver = Callable[["PhysicsObj", float], None]
 
 
-class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerRequests):
+class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, ManagerRequests):
     """Retail ``CPhysicsObj`` (acclient.h:30689): one body, its state and its tick.
 
     ``velocity`` is ``m_velocityVector`` (what physics integrates),
@@ -129,6 +130,8 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         if part_array is not None:
             part_array.set_owner(self)
         self.parent: PhysicsObj | None = None
+        #: ``children``: the objects this body holds (``CHILDLIST``), made on the first.
+        self.children: ChildList | None = None
 
         self.state: PhysicsState = DEFAULT_PHYSICS_STATE
         self.transient_state: TransientState = TransientState(0)
@@ -458,7 +461,7 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
     # -- the commit ------------------------------------------------------------------------
 
     def set_frame(self, frame: Frame) -> None:
-        """Make ``frame`` the body's frame.
+        """Make ``frame`` the body's frame, and carry its children along.
 
         A frame whose origin is sound but whose quaternion has a NaN is
         committed with an all-zero quaternion (the next ``combine`` then
@@ -473,6 +476,8 @@ class PhysicsObj(CollisionReports, CellMembership, Effects, Motion, ManagerReque
         self.position.frame.assign(committed)
         if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
             self.part_array.set_frame(self.position.frame)
+        if self.children is not None:
+            self.update_children_internal()
 
     def transition(self, old_pos: Position, new_pos: Position, admin_move: bool = False) -> Transition | None:
         """Sweep the body's spheres from ``old_pos`` to ``new_pos``; None when no valid position exists.

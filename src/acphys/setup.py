@@ -17,6 +17,15 @@ if TYPE_CHECKING:
 
 
 @dataclass
+class LocationType:
+    """Retail ``LocationType``: a holding location or connection point, a part (0xFFFFFFFF: the
+    whole object) and a frame relative to it."""
+
+    part_id: int
+    frame: Frame
+
+
+@dataclass
 class SetupPart:
     """One part of a many-part setup: what retail reads from ``CSetup::parts[i]`` (its
     ``CGfxObj``'s physics BSP and ``gfx_bound_box``), ``default_scale[i]`` and frame ``i`` of the
@@ -60,6 +69,8 @@ class Setup:
     sorting_sphere: Sphere = field(default_factory=lambda: Sphere(Vector3(), 0.0))
     motion_table: MotionTable | None = None
     parts: list[SetupPart] | None = None
+    #: ``holding_locations``: where a held object goes, by location id (``CSetup::GetHoldingLocation``).
+    holding_locations: dict[int, LocationType] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.parts is None:

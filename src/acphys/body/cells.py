@@ -144,25 +144,37 @@ class CellMembership:
             self.enter_cell(new_cell)
         else:
             self.position.objcell_id = 0
+            if self.part_array is not None and not self.state & PS.PARTICLE_EMITTER:
+                self.part_array.set_cell_id(0)
             self.cell = None
 
     def enter_cell(self, new_cell: ObjCell) -> None:
-        """Join ``new_cell``'s object list and take its id (bodies without parts cannot).
+        """Join ``new_cell``'s object list, with every child, and take its id (bodies without
+        parts cannot).
 
         Retail: CPhysicsObj::enter_cell @ 0x00510ED0 (acclient.c:318201)
         """
         if self.part_array is None:
             return
         new_cell.add_object(self)
+        if self.children is not None:
+            for child in list(self.children.objects):
+                child.enter_cell(new_cell)
         self.position.objcell_id = new_cell.id
         if not self.state & PS.PARTICLE_EMITTER:
             self.part_array.set_cell_id(new_cell.id)
         self.cell = new_cell
 
     def leave_cell(self) -> None:
-        """Retail: CPhysicsObj::leave_cell @ 0x00510F50 (acclient.c:318243)"""
+        """Leave the cell's object list, with every child.
+
+        Retail: CPhysicsObj::leave_cell @ 0x00510F50 (acclient.c:318243)
+        """
         if self.cell is not None:
             self.cell.remove_object(self)
+            if self.children is not None:
+                for child in list(self.children.objects):
+                    child.leave_cell()
             self.cell = None
 
     def store_position(self, pos: Position) -> None:
@@ -192,21 +204,7 @@ class CellMembership:
         self.position.objcell_id = 0
         if self.part_array is not None and not self.state & PS.PARTICLE_EMITTER:
             self.part_array.set_cell_id(0)
-        self.transient_state &= ~TS.CONTACT
-        self.calc_acceleration()
-        was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
-        self.transient_state &= ~(TS.ON_WALKABLE | TS.WATER_CONTACT)
-        if was_on_walkable and self.movement_manager is not None:
-            self.movement_manager.leave_ground()
-        self.calc_acceleration()
-        self.transient_state &= ~(
-            TS.SLIDING
-            | TS.STATIONARY_FALL
-            | TS.STATIONARY_STOP
-            | TS.STATIONARY_STUCK
-            | TS.ACTIVE
-            | TS.CHECK_ETHEREAL
-        )
+        self.clear_transient_states()  # inline in retail (acclient.c:322680-322691)
 
     def prepare_to_leave_visibility(self) -> None:
         """Take the body out of every cell (its shadows, the lost cell, its own cell).

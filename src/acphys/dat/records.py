@@ -17,7 +17,7 @@ from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
-from acphys.setup import Setup, SetupPart
+from acphys.setup import LocationType, Setup, SetupPart
 from acphys.world.terrain import HEIGHT_TABLE_SIZE, NUM_VERTICES, LandBlockStruct, set_height_table
 
 #: ``CSetup`` flag bits, the first dword of ``CSetup::UnPack``'s body.
@@ -88,14 +88,6 @@ class Reader:
     def align(self) -> None:
         """Skip to the next multiple of 4 (records start 4-aligned in retail's buffers)."""
         self.pos += -self.pos % 4
-
-
-@dataclass
-class LocationType:
-    """``LocationType``: a holding location or connection point."""
-
-    part_id: int
-    frame: Frame
 
 
 @dataclass
@@ -170,6 +162,10 @@ class SetupRecord:
             sorting_sphere=self.sorting_sphere.copy(),
             physics_bsp=physics_bsp,
             parts=list(parts) if parts is not None else None,
+            holding_locations={
+                key: LocationType(loc.part_id, loc.frame.copy())
+                for key, loc in self.holding_locations.items()
+            },
         )
 
 

@@ -42,7 +42,7 @@ from acphys.scenario.world_data import (
     read_objects,
     read_solids,
 )
-from acphys.setup import BUILTIN_SETUPS, Setup, bounding_sphere
+from acphys.setup import BUILTIN_SETUPS, LocationType, Setup, bounding_sphere
 from acphys.simulation import Simulation
 from acphys.world.world import World
 
@@ -85,6 +85,7 @@ SETUP_KEYS = (
     "boxes",
     "polygons",
     "solids",
+    "holding_locations",
 )
 #: The motion table each built-in setup comes with (retail's ``default_mtable_id``).
 BUILTIN_SETUP_TABLES = {"human": "humanoid"}
@@ -138,6 +139,26 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             height = read.ranged(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
             cylspheres.append(CylSphere(low_pt, radius, height))
 
+        holding: dict[int, LocationType] = {}
+        for index, item in enumerate(
+            read.list_of_tables(ctx, f"{key}.holding_locations", table.get("holding_locations", []))
+        ):
+            holding_key = f"{key}.holding_locations[{index}]"
+            entry = read.table(ctx, holding_key, item, ("location", "part", "origin", "heading"))
+            where = entry.get("location")
+            if not isinstance(where, int) or isinstance(where, bool) or not 0 <= where <= 0xFFFFFFFF:
+                raise ctx.fail(
+                    f"{holding_key}.location", f"expected a location id (an integer), got {where!r}"
+                )
+            if where in holding:
+                raise ctx.fail(f"{holding_key}.location", f"location {where} is given twice")
+            part = entry.get("part", -1)
+            if part not in (-1, 0) or isinstance(part, bool):
+                raise ctx.fail(f"{holding_key}.part", f"a scenario setup has one part: -1 or 0, got {part!r}")
+            origin = read.vector(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
+            heading = read.ranged(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
+            holding[where] = LocationType(part & 0xFFFFFFFF, Frame.from_heading(origin, heading))
+
         def length(field: str) -> float:
             return read.ranged(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)  # noqa: B023
 
@@ -155,6 +176,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             physics_bsp=read_solids(ctx, key, table),
             sorting_sphere=bounding_sphere(spheres),
             motion_table=motion_table,
+            holding_locations=holding,
         )
     return setups
 

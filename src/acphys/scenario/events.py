@@ -41,6 +41,8 @@ ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "constrain_to": (("origin", "start", "max"), ("landblock",)),
     "unconstrain": ((), ()),
     "play_script": (("script",), ()),
+    "set_parent": (("target",), ("part", "location", "origin", "heading")),
+    "unset_parent": ((), ()),
 }
 EVENT_ACTIONS = tuple(ACTION_KEYS)
 #: Actions that need the body to have a motion table (and so a movement manager).
@@ -200,6 +202,56 @@ def _manager_apply(
     return play
 
 
+def _parent_apply(
+    ctx: Ctx, key: str, action: str, table: dict[str, Any], body: PhysicsObj, bodies: dict[str, PhysicsObj]
+) -> Apply:
+    """``set_parent``: the body is held by ``target``, at its setup's holding ``location`` or at
+    ``origin``/``heading`` on part ``part`` (default -1, the target itself); ``unset_parent``."""
+    if action == "unset_parent":
+
+        def unset(obj: PhysicsObj) -> None:
+            obj.unset_parent()
+            obj.record_event("unset_parent")
+
+        return unset
+    name = read.string(ctx, f"{key}.target", table["target"])
+    if name not in bodies or bodies[name] is body:
+        raise ctx.fail(f"{key}.target", f"no other body named {name!r} to be held by")
+    parent = bodies[name]
+    if "location" in table:
+        for frame_key in ("part", "origin", "heading"):
+            if frame_key in table:
+                raise ctx.fail(f"{key}.{frame_key}", "not used with location (the setup's location gives it)")
+        where = table["location"]
+        if not isinstance(where, int) or isinstance(where, bool) or not 0 <= where <= 0xFFFFFFFF:
+            raise ctx.fail(f"{key}.location", f"expected a holding location id (an integer), got {where!r}")
+        if where not in parent.part_array.setup.holding_locations:
+            known = ", ".join(str(k) for k in sorted(parent.part_array.setup.holding_locations)) or "none"
+            raise ctx.fail(
+                f"{key}.location", f"{name!r}'s setup has no holding location {where} (it has: {known})"
+            )
+        attach = lambda obj: obj.set_parent_at_location(parent, where)  # noqa: E731
+    else:
+        part = table.get("part", -1)
+        parts = len(parent.part_array.parts)
+        if not isinstance(part, int) or isinstance(part, bool) or not -1 <= part < parts:
+            raise ctx.fail(
+                f"{key}.part", f"expected -1 (the whole body) or a part below {parts}, got {part!r}"
+            )
+        origin = read.vector(ctx, f"{key}.origin", table.get("origin", [0.0, 0.0, 0.0]))
+        heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+        frame = Frame.from_heading(origin, heading)
+        attach = lambda obj: obj.set_parent(parent, part, frame)  # noqa: E731
+
+    def hold(obj: PhysicsObj) -> None:
+        held = attach(obj)
+        obj.record_event(f"set_parent:{name}" if held else f"set_parent:{name}:failed")
+        if held:
+            parent.record_event(f"holds:{obj.name}")
+
+    return hold
+
+
 def read_event(
     ctx: Ctx, key: str, raw: Any, bodies: dict[str, PhysicsObj], duration: float, scripts: dict[str, int]
 ) -> Event:
@@ -254,6 +306,8 @@ def read_event(
         apply = _move_to_apply(ctx, key, table, body)
     elif action == "turn_to":
         apply = _turn_to_apply(ctx, key, table)
+    elif action in ("set_parent", "unset_parent"):
+        apply = _parent_apply(ctx, key, action, table, body, bodies)
     else:
         apply = _manager_apply(ctx, key, action, table, body, bodies, scripts)
     return Event(at=at, body=name, action=action, apply=apply, source=key)

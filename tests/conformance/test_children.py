@@ -286,3 +286,26 @@ class TestParts:
         assert child.set_parent(parent, 1, Frame(V(0.0, 0.0, 1.0)))
         # Part 1 is at (96, 96, 50) + R(90°)·(2, 0, 0) = (96, 94, 50); the load 1 m above it.
         assert tuple(child.position.frame.origin) == pytest.approx((96.0, 94.0, 51.0), abs=1e-12)
+
+
+class TestDeleteObject:
+    """CObjectMaint::DeleteObject @ 0x00508460 (acclient.c:309917): exit_world, leave_world, out of
+    the object table, then unset_parent and unparent_children."""
+
+    def test_deleting_a_holder_lets_its_children_go(self, world):
+        parent = place(world, name="parent", origin=PARENT_AT)
+        child = place(world, name="child", origin=(10.0, 10.0, 50.0))
+        assert child.set_parent(parent, WHOLE_OBJECT, Frame(V(0.0, 0.5, 1.0)))
+        world.remove_object(parent)
+        assert world.get_object(parent.id) is None
+        assert child.parent is None
+        assert len(parent.children) == 0
+
+    def test_deleting_a_held_object_takes_it_off_its_parent(self, world):
+        parent = place(world, name="parent", origin=PARENT_AT)
+        child = place(world, name="child", origin=(10.0, 10.0, 50.0))
+        assert child.set_parent(parent, WHOLE_OBJECT, Frame(V(0.0, 0.5, 1.0)))
+        world.remove_object(child)
+        assert len(parent.children) == 0
+        assert child.cell is None
+        assert child not in parent.cell.objects

@@ -87,11 +87,18 @@ class World:
         return object_id
 
     def remove_object(self, obj: PhysicsObj) -> None:
-        """Take ``obj`` out of the world (``leave_world``) and out of the object table."""
+        """Delete ``obj`` from the world: ``exit_world``, ``leave_world``, out of the object table,
+        then off its parent and rid of its children.
+
+        Retail: CObjectMaint::DeleteObject @ 0x00508460 (acclient.c:309917)
+        """
         if self._objects.get(obj.id) is not obj:
             raise ValueError(f"{obj.name!r} (0x{obj.id:08X}) is not an object of this world")
+        obj.exit_world()
         obj.leave_world()
         del self._objects[obj.id]
+        obj.unset_parent()
+        obj.unparent_children()
 
     def get_object(self, object_id: int) -> PhysicsObj | None:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""

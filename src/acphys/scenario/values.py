@@ -71,17 +71,21 @@ def boolean(ctx: Ctx, key: str, value: Any) -> bool:
     return value
 
 
-def landblock(ctx: Ctx, key: str, value: Any) -> int:
-    """A landblock id ``0xXXYY`` as an integer or a hex string."""
+def _id(ctx: Ctx, key: str, value: Any, what: str) -> int:
+    """An id as an integer or a hex string; ``what`` names it with an example in the error."""
     if isinstance(value, str):
         try:
-            number = int(value, 16)
+            return int(value, 16)
         except ValueError:
-            raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {value!r}') from None
-    elif isinstance(value, int) and not isinstance(value, bool):
-        number = value
-    else:
-        raise ctx.fail(key, f'expected a landblock id like "0xA9B4", got {kind(value)}')
+            raise ctx.fail(key, f"expected {what}, got {value!r}") from None
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value
+    raise ctx.fail(key, f"expected {what}, got {kind(value)}")
+
+
+def landblock(ctx: Ctx, key: str, value: Any) -> int:
+    """A landblock id ``0xXXYY`` as an integer or a hex string."""
+    number = _id(ctx, key, value, 'a landblock id like "0xA9B4"')
     if not 0 <= number <= 0xFEFE:
         raise ctx.fail(key, f"landblock 0x{number:X} is outside the world (0x0000-0xFEFE)")
     return number
@@ -89,15 +93,7 @@ def landblock(ctx: Ctx, key: str, value: Any) -> int:
 
 def object_id(ctx: Ctx, key: str, value: Any) -> int:
     """A 32-bit object id (a server guid such as ``"0x50000001"``), non-zero."""
-    if isinstance(value, str):
-        try:
-            number = int(value, 16)
-        except ValueError:
-            raise ctx.fail(key, f'expected an object id like "0x50000001", got {value!r}') from None
-    elif isinstance(value, int) and not isinstance(value, bool):
-        number = value
-    else:
-        raise ctx.fail(key, f'expected an object id like "0x50000001", got {kind(value)}')
+    number = _id(ctx, key, value, 'an object id like "0x50000001"')
     if not 0 < number <= 0xFFFFFFFF:
         raise ctx.fail(key, f"object id {number:#x} is not a non-zero 32-bit id")
     return number

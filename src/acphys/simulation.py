@@ -71,7 +71,8 @@ class Physics:
         if elapsed < MIN_QUANTUM:
             return False
         for obj in self._order:
-            obj.update_object()
+            if self.world.has_object(obj):  # a removed object is no longer in the table
+                obj.update_object()
         self.last_update = self.world.cur_time
         return True
 

@@ -276,3 +276,19 @@ class TestObjectTableOrder:
         for body in bodies:
             physics.add(body)
         assert physics.objects == bodies
+
+    def test_a_removed_body_is_no_longer_run(self, world):
+        # CObjectMaint::DeleteObject takes it out of object_table (acclient.c:309917), the table
+        # CPhysics::UseTime walks.
+        kept = self._body(world, "kept", None, 90.0)
+        gone = self._body(world, "gone", None, 94.0)
+        physics = Physics(world)
+        physics.add(kept)
+        physics.add(gone)
+        ran: list[str] = []
+        for body in (kept, gone):
+            body.observer = lambda body, _quantum: ran.append(body.name)
+        world.remove_object(gone)
+        world.cur_time = 0.05
+        assert physics.use_time() is True
+        assert ran == ["kept"]

@@ -92,13 +92,17 @@ class World:
 
         Retail: CObjectMaint::DeleteObject @ 0x00508460 (acclient.c:309917)
         """
-        if self._objects.get(obj.id) is not obj:
+        if not self.has_object(obj):
             raise ValueError(f"{obj.name!r} (0x{obj.id:08X}) is not an object of this world")
         obj.exit_world()
         obj.leave_world()
         del self._objects[obj.id]
         obj.unset_parent()
         obj.unparent_children()
+
+    def has_object(self, obj: PhysicsObj) -> bool:
+        """Whether ``obj`` is in the object table (made here and not removed)."""
+        return self._objects.get(obj.id) is obj
 
     def get_object(self, object_id: int) -> PhysicsObj | None:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""

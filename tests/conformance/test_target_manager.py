@@ -293,8 +293,7 @@ def run(world: World, bodies: list[PhysicsObj], seconds: float) -> None:
             b.update_object()
 
 
-#: The sought object's radius in the move-to request. The built-in human setup has no DAT radius
-#: (``get_radius`` is 0), so the request carries its sphere radius, as a server would send the real one.
+#: The sought object's radius in the move-to request: the built-in human's (its spheres' 0.48 m).
 HUMAN_RADIUS = 0.48
 
 

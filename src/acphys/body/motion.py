@@ -109,6 +109,69 @@ class Motion:
         request = MovementStruct(MovementType.MOVE_TO_POSITION, pos=pos.copy(), params=params)
         return manager.perform_movement(request)
 
+    def move_to_object(self, object_id: int, params: MovementParameters) -> None:
+        """Walk or run to the body ``object_id`` (nothing when the world has no such body).
+
+        The movement manager is made first (in its default state, the body woken); the
+        request carries the target's radius and height and its top-level object (its
+        parent when it is held).
+
+        Retail: CPhysicsObj::MoveToObject @ 0x00512860 (acclient.c:319766)
+        """
+        self.make_movement_manager(init_motion=True)
+        target = self.world.get_object(object_id)
+        if target is None:
+            return
+        height = target.part_array.get_height() if target.part_array is not None else 0.0
+        radius = target.part_array.get_radius() if target.part_array is not None else 0.0
+        top_level = target.parent if target.parent is not None else target
+        self.move_to_object_internal(object_id, top_level.id, radius, height, params)
+
+    def move_to_object_internal(
+        self,
+        object_id: int,
+        top_level_id: int,
+        object_radius: float,
+        object_height: float,
+        params: MovementParameters,
+    ) -> None:
+        """Hand a MoveToObject request (type 6) to the movement manager, made if needed.
+
+        Retail: CPhysicsObj::MoveToObject_Internal @ 0x005102E0 (acclient.c:317482)
+        """
+        manager = self.make_movement_manager(init_motion=True)
+        request = MovementStruct(
+            MovementType.MOVE_TO_OBJECT,
+            object_id=object_id,
+            top_level_id=top_level_id,
+            radius=object_radius,
+            height=object_height,
+            params=params,
+        )
+        manager.perform_movement(request)
+
+    def turn_to_object(self, object_id: int, params: MovementParameters) -> None:
+        """Turn to face the body ``object_id`` (nothing when the world has no such body).
+
+        Retail: CPhysicsObj::TurnToObject @ 0x00512940 (acclient.c:319827)
+        """
+        target = self.world.get_object(object_id)
+        if target is None:
+            return
+        top_level = target.parent if target.parent is not None else target
+        self.turn_to_object_internal(object_id, top_level.id, params)
+
+    def turn_to_object_internal(self, object_id: int, top_level_id: int, params: MovementParameters) -> None:
+        """Hand a TurnToObject request (type 8) to the movement manager, made if needed.
+
+        Retail: CPhysicsObj::TurnToObject_Internal @ 0x005103F0 (acclient.c:317532)
+        """
+        manager = self.make_movement_manager(init_motion=True)
+        request = MovementStruct(
+            MovementType.TURN_TO_OBJECT, object_id=object_id, top_level_id=top_level_id, params=params
+        )
+        manager.perform_movement(request)
+
     def cancel_moveto(self) -> None:
         """Retail: CPhysicsObj::cancel_moveto @ 0x005101F0 (acclient.c:317420)"""
         if self.movement_manager is not None:

@@ -35,6 +35,8 @@ ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "jump": ((), ("extent",)),
     "move_to": (("origin",), ("landblock", "distance", "min_distance", "speed", "hold_run", "fail_distance")),
     "turn_to": (("heading",), ("speed",)),
+    "move_to_object": (("target",), ("distance", "min_distance", "speed", "hold_run", "fail_distance")),
+    "turn_to_object": (("target",), ("speed",)),
     "interpolate_to": (("origin",), ("landblock", "heading", "keep_heading")),
     "stick_to": (("target",), ()),
     "unstick": ((), ()),
@@ -46,7 +48,7 @@ ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 }
 EVENT_ACTIONS = tuple(ACTION_KEYS)
 #: Actions that need the body to have a motion table (and so a movement manager).
-MOTION_ACTIONS = ("motion", "stop_motion", "jump", "move_to", "turn_to")
+MOTION_ACTIONS = ("motion", "stop_motion", "jump", "move_to", "turn_to", "move_to_object", "turn_to_object")
 
 Apply = Callable[[PhysicsObj], None]
 
@@ -109,8 +111,8 @@ def _position(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Po
     return Position(outdoor_cell_id(landblock, origin), Frame.from_heading(origin, heading))
 
 
-def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Apply:
-    target = _position(ctx, key, table, body)
+def _move_params(ctx: Ctx, key: str, table: dict[str, Any]) -> MovementParameters:
+    """The parameters of a move-to: speed and hold key, and the distances it stops and fails at."""
     params = _params(ctx, key, table)
     if "distance" in table:
         params.distance_to_object = read.ranged(ctx, f"{key}.distance", table["distance"], 0.0, 1000.0)
@@ -118,7 +120,46 @@ def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) 
         params.min_distance = read.ranged(ctx, f"{key}.min_distance", table["min_distance"], 0.0, 1000.0)
     if "fail_distance" in table:
         params.fail_distance = read.ranged(ctx, f"{key}.fail_distance", table["fail_distance"], 0.0, 1e6)
+    return params
+
+
+def _move_to_apply(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Apply:
+    target = _position(ctx, key, table, body)
+    params = _move_params(ctx, key, table)
     return lambda obj: _report(obj, "move_to", obj.move_to_position(target, params.copy()))
+
+
+def _other_body(
+    ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj, bodies: dict[str, PhysicsObj], purpose: str
+) -> str:
+    """The name of the event's ``target``: another body of the scenario (``purpose`` is for the error)."""
+    name = read.string(ctx, f"{key}.target", table["target"])
+    if name not in bodies or bodies[name] is body:
+        raise ctx.fail(f"{key}.target", f"no other body named {name!r} {purpose}")
+    return name
+
+
+def _to_object_apply(
+    ctx: Ctx, key: str, action: str, table: dict[str, Any], body: PhysicsObj, bodies: dict[str, PhysicsObj]
+) -> Apply:
+    """``move_to_object`` / ``turn_to_object``: CPhysicsObj::MoveToObject / TurnToObject on a body."""
+    name = _other_body(ctx, key, table, body, bodies, "to move or turn to")
+    target = bodies[name]
+    if action == "move_to_object":
+        params = _move_params(ctx, key, table)
+
+        def move(obj: PhysicsObj) -> None:
+            obj.move_to_object(target.id, params.copy())
+            obj.record_event(f"move_to_object:{name}")
+
+        return move
+    params = _params(ctx, key, table)
+
+    def turn(obj: PhysicsObj) -> None:
+        obj.turn_to_object(target.id, params.copy())
+        obj.record_event(f"turn_to_object:{name}")
+
+    return turn
 
 
 def _turn_to_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
@@ -152,9 +193,7 @@ def _manager_apply(
 
         return interpolate
     if action == "stick_to":
-        name = read.string(ctx, f"{key}.target", table["target"])
-        if name not in bodies or bodies[name] is body:
-            raise ctx.fail(f"{key}.target", f"no other body named {name!r} to stick to")
+        name = _other_body(ctx, key, table, body, bodies, "to stick to")
         other = bodies[name]
 
         def stick(obj: PhysicsObj) -> None:
@@ -214,9 +253,7 @@ def _parent_apply(
             obj.record_event("unset_parent")
 
         return unset
-    name = read.string(ctx, f"{key}.target", table["target"])
-    if name not in bodies or bodies[name] is body:
-        raise ctx.fail(f"{key}.target", f"no other body named {name!r} to be held by")
+    name = _other_body(ctx, key, table, body, bodies, "to be held by")
     parent = bodies[name]
     if "location" in table:
         for frame_key in ("part", "origin", "heading"):
@@ -306,6 +343,8 @@ def read_event(
         apply = _move_to_apply(ctx, key, table, body)
     elif action == "turn_to":
         apply = _turn_to_apply(ctx, key, table)
+    elif action in ("move_to_object", "turn_to_object"):
+        apply = _to_object_apply(ctx, key, action, table, body, bodies)
     elif action in ("set_parent", "unset_parent"):
         apply = _parent_apply(ctx, key, action, table, body, bodies)
     else:

@@ -320,6 +320,33 @@ class TestBodySide:
                 Transition.cleanup_transition()
         assert Transition.transition_level == 0
 
+    def test_the_pool_reuses_each_level_and_init_resets_only_its_fields(self) -> None:
+        # makeTransition builds ten transitions once and hands out transit[level] after
+        # CTransition::init (acclient.c:312548-312571); init clears the object, the path's
+        # SPHEREPATH::init fields and the cell array (311595), nothing else.
+        world = World()
+        first = Transition.make_transition(world)
+        try:
+            inner = Transition.make_transition(world)
+            Transition.cleanup_transition()
+            first.sphere_path.begin_cell = world.get_cell(0xA9B40001)
+            first.sphere_path.global_offset = V(1.0, 2.0, 3.0)
+            first.sphere_path.walk_interp = 0.25
+            first.object_info.object = place(world, name="mover")
+        finally:
+            Transition.cleanup_transition()
+        again = Transition.make_transition(world)
+        try:
+            assert again is first
+            assert inner is not first
+            assert again.object_info.object is None
+            assert again.sphere_path.begin_cell is None
+            # Not SPHEREPATH::init's (acclient.c:313430): left from the last sweep in this slot.
+            assert again.sphere_path.global_offset == V(1.0, 2.0, 3.0)
+            assert again.sphere_path.walk_interp == 0.25
+        finally:
+            Transition.cleanup_transition()
+
     def test_walkable_is_floor_z(self) -> None:
         assert PhysicsObj.is_valid_walkable(V(0.0, 0.0, FLOOR_Z))
         assert not PhysicsObj.is_valid_walkable(V(0.0, 0.0, FLOOR_Z - EPSILON))

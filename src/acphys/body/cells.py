@@ -298,19 +298,21 @@ class CellMembership:
     def set_position(self, sps: SetPositionStruct) -> int:
         """Place the body as ``sps`` asks; a :class:`SetPositionError` code (0 is OK).
 
-        A fresh transition (object state 0) carries the body's spheres, scaled (the dummy
-        sphere without any). Retail's pool of ten nested transitions is not modelled: placement
-        never nests here.
+        A transition from the pool (object state 0) carries the body's spheres, scaled (the
+        dummy sphere without any); the pool is full when ten are already running.
 
         Retail: CPhysicsObj::SetPosition @ 0x005160C0 (acclient.c:323289)
         """
-        transit = Transition(self.world, self)
-        transit.object_info.init(self, ObjectInfoState.DEFAULT)
-        if self.part_array is not None and self.part_array.get_num_sphere():
-            transit.init_sphere(self.part_array.get_sphere(), self.scale)
-        else:
-            transit.init_sphere([DUMMY_SPHERE], 1.0)
-        return self.set_position_from_struct(sps, transit)
+        transit = Transition.make_transition(self.world)
+        try:
+            transit.init_object(self, ObjectInfoState.DEFAULT)
+            if self.part_array is not None and self.part_array.get_num_sphere():
+                transit.init_sphere(self.part_array.get_sphere(), self.scale)
+            else:
+                transit.init_sphere([DUMMY_SPHERE], 1.0)
+            return self.set_position_from_struct(sps, transit)
+        finally:
+            Transition.cleanup_transition()
 
     def set_position_from_struct(self, sps: SetPositionStruct, transit: Transition) -> int:
         """RANDOM_SCATTER goes straight to the scatter tries; otherwise ``sps.pos`` is tried and,

@@ -82,6 +82,8 @@ class Transition:
 
     #: ``CTransition::transition_level``: how many transitions are running, nested.
     transition_level: ClassVar[int] = 0
+    #: ``transit``: retail's static pool of ten, built on the first request and reused ever after.
+    _pool: ClassVar[list[Transition]] = []
 
     def __init__(self, world: CellSource, obj: PhysicsObj | None = None) -> None:
         self.world = world
@@ -96,8 +98,13 @@ class Transition:
 
     @classmethod
     def make_transition(cls, world: CellSource) -> Transition:
-        """A fresh transition for the next nesting level; past ten levels, a ``RuntimeError``
-        (retail returns no transition, and the sweep that asked for it fails).
+        """The pool's transition for the next nesting level, ``init``-ed for ``world``; past ten
+        levels, a ``RuntimeError`` (retail returns no transition, and the sweep that asked for
+        it fails).
+
+        The pool is retail's: ten transitions made once and reused, so what ``init`` does not
+        reset (the sphere path's positions, low points, walkable and step records) carries
+        over from the last sweep that used the slot, as it does in the client.
 
         Retail: CTransition::makeTransition @ 0x0050B150 (acclient.c:312542)
         """
@@ -105,8 +112,14 @@ class Transition:
             raise RuntimeError(
                 f"CTransition::makeTransition: more than {MAX_TRANSITION_LEVEL} nested transitions"
             )
+        if not cls._pool:
+            cls._pool = [cls(world) for _ in range(MAX_TRANSITION_LEVEL)]
+        transit = cls._pool[cls.transition_level]
+        transit.world = world
+        transit.cell_array.source = world
+        transit.init()
         cls.transition_level += 1
-        return cls(world)
+        return transit
 
     @classmethod
     def cleanup_transition(cls) -> None:

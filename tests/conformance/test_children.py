@@ -120,6 +120,21 @@ class TestSetParent:
         assert child.parent is None
         assert parent.children is None
 
+    def test_holding_ones_own_holder_is_an_error(self, world):
+        # Retail refuses only obj == this (acclient.c:316777); a cycle would make
+        # UpdateChildrenInternal and UpdateChild call each other until the stack overflows.
+        grandparent = place(world, name="grandparent", origin=PARENT_AT)
+        parent = place(world, name="parent", origin=(10.0, 10.0, 50.0))
+        child = place(world, name="child", origin=(12.0, 10.0, 50.0))
+        assert parent.set_parent(grandparent, WHOLE_OBJECT, Frame(V(0.0, 1.0, 0.0)))
+        assert child.set_parent(parent, WHOLE_OBJECT, Frame(V(0.0, 1.0, 0.0)))
+        with pytest.raises(ValueError, match="'grandparent' cannot be held by 'child'"):
+            grandparent.set_parent(child, WHOLE_OBJECT, Frame())
+        assert grandparent.parent is None
+        assert len(child.children or []) == 0
+        # Two levels deep: the child is carried through its parent.
+        assert tuple(child.position.frame.origin) == pytest.approx((96.0, 98.0, 50.0), abs=1e-12)
+
     def test_a_second_parent_takes_the_child_from_the_first(self, world):
         first = place(world, name="first", origin=PARENT_AT)
         second = place(world, name="second", origin=(100.0, 96.0, 50.0))
@@ -309,3 +324,65 @@ class TestDeleteObject:
         assert len(parent.children) == 0
         assert child.cell is None
         assert child not in parent.cell.objects
+
+
+class TestRandomHolding:
+    """Random sequences of holding, letting go, deleting and moving keep retail's bookkeeping whole:
+    a body is in its holder's CHILDLIST exactly when its ``parent`` is that holder, a held body
+    shares its holder's cell and, when the holder is in the world, sits at its frame combined
+    with its offset, every body with a cell is in that cell's object list once, and no coordinate
+    is NaN. (Deleting a holder takes its children out of their cells before it lets them go,
+    acclient.c:309925-309934, so they are left in none, and UpdateChild only runs for a holder
+    with a cell, 323018; both as retail.)"""
+
+    @pytest.mark.parametrize("seed", range(6))
+    def test_the_bookkeeping_stays_whole(self, world, seed):
+        import math
+        import random
+
+        rng = random.Random(seed)
+        world.set_flat_ground(0xA9B4, 50.0)
+        bodies = [
+            place(world, name=f"b{i}", origin=(60.0 + 9.0 * i, 96.0, 50.0), on_ground=True, state=PS(0))
+            for i in range(6)
+        ]
+        alive = list(bodies)
+        world.cur_time = 0.0
+        for _ in range(120):
+            action = rng.choice(("hold", "hold", "release", "unparent", "move", "delete", "tick"))
+            a, b = rng.choice(alive), rng.choice(alive)
+            if action == "hold" and a is not b:
+                try:
+                    a.set_parent(b, WHOLE_OBJECT, Frame.from_heading(V(rng.uniform(-1, 1), 0.6, 1.0), 30.0))
+                except ValueError as error:
+                    assert "recurse forever" in str(error)
+            elif action == "release":
+                a.unset_parent()
+            elif action == "unparent":
+                a.unparent_children()
+            elif action == "move" and a.parent is None and a.cell is not None:
+                a.set_velocity(V(rng.uniform(-20, 20), rng.uniform(-20, 20), 0.0))
+            elif action == "delete" and len(alive) > 2:
+                world.remove_object(a)
+                alive.remove(a)
+            world.cur_time += 1.0 / 30.0
+            for body in alive:
+                body.update_object()
+            for body in alive:
+                origin = body.position.frame.origin
+                assert not any(math.isnan(c) for c in origin)
+                if body.parent is not None:
+                    holder = body.parent
+                    assert holder in alive
+                    index = holder.children.find_child_index(body)
+                    assert index is not None
+                    assert body.cell is holder.cell
+                    if holder.cell is None:
+                        continue
+                    expected = Frame()
+                    expected.combine(holder.position.frame, holder.children.frames[index])
+                    assert tuple(origin) == pytest.approx(tuple(expected.origin), abs=1e-9)
+                if body.children is not None:
+                    assert all(child.parent is body for child in body.children.objects)
+                if body.cell is not None:
+                    assert body.cell.objects.count(body) == 1

@@ -119,7 +119,11 @@ class Children:
 
         Retail: CPhysicsObj::set_parent @ 0x00515B50 (acclient.c:323002)
         """
-        if obj is None or not obj.add_child(self, part_index, frame):
+        if obj is None:
+            return False
+        if obj is not self:
+            self._refuse_cycle(obj)
+        if not obj.add_child(self, part_index, frame):
             return False
         self._attach_to(obj)
         if obj.cell is not None:
@@ -134,7 +138,11 @@ class Children:
 
         Retail: CPhysicsObj::set_parent @ 0x00515A90 (acclient.c:322951)
         """
-        if obj is None or not obj.add_child_at_location(self, where):
+        if obj is None:
+            return False
+        if obj is not self:
+            self._refuse_cycle(obj)
+        if not obj.add_child_at_location(self, where):
             return False
         self._attach_to(obj)
         if obj.cell is not None and obj.children is not None:
@@ -145,6 +153,21 @@ class Children:
         if obj.state & PS.HIDDEN:
             self.state |= PS.NODRAW
         return True
+
+    def _refuse_cycle(self, obj: PhysicsObj) -> None:
+        """Raise when ``obj`` is this body or is held, at any depth, by it.
+
+        Retail only refuses ``obj == this`` (acclient.c:316777): a longer cycle would make
+        ``UpdateChildrenInternal`` recurse until the client's stack overflows.
+        """
+        holder: PhysicsObj | None = obj
+        while holder is not None:
+            if holder is self:
+                raise ValueError(
+                    f"{self.name!r} cannot be held by {obj.name!r}: {obj.name!r} is held by it "
+                    "(retail would recurse forever)"
+                )
+            holder = holder.parent
 
     def _attach_to(self, obj: PhysicsObj) -> None:
         """What both ``set_parent`` overloads do once ``obj`` holds the body (acclient.c:322965-322970)."""

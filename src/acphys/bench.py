@@ -16,6 +16,7 @@ Nothing here asserts a time: the figures are reported, never checked.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
@@ -109,9 +110,34 @@ def _fallers(count: int, seconds: float) -> Simulation:
     return parse_scenario(text, source="<bench fallers>")
 
 
+def _crowd(count: int, seconds: float) -> Simulation:
+    """Humans 1.5 m apart in a square, rows facing north and south by turns, walking into each
+    other head-on: every sweep meets the shadows of its neighbours (the object-object checks)."""
+    side = max(1, math.ceil(math.sqrt(count)))
+
+    def body(i: int) -> str:
+        row, column = divmod(i, side)
+        return (
+            f'[[body]]\nname = "c{i}"\nlandblock = "0xA9B4"\non_ground = true\n'
+            f"heading = {180.0 * (row % 2)}\norigin = [{80.0 + 1.5 * column}, {80.0 + 1.5 * row}, 50.0]\n"
+        )
+
+    def event(i: int) -> str:
+        return f'[[event]]\nat = 0.0\nbody = "c{i}"\naction = "motion"\nmotion = "WalkForward"\n'
+
+    text = (
+        f'[scenario]\nname = "bench"\nduration = {seconds}\ndriver_hz = 30.0\n'
+        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n'
+        + "".join(body(i) for i in range(count))
+        + "".join(event(i) for i in range(count))
+    )
+    return parse_scenario(text, source="<bench crowd>")
+
+
 WORKLOADS: dict[str, tuple[str, Callable[[int, float], Simulation]]] = {
     "walkers": ("humans walking and running: animation root motion, motion tables, the sweep", _walkers),
     "fallers": ("balls in flight and landing: Euler integration and the sweep", _fallers),
+    "crowd": ("humans walking into each other 1.5 m apart: the object-object checks", _crowd),
 }
 
 

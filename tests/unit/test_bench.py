@@ -34,15 +34,25 @@ def test_the_walkers_actually_walk() -> None:
     assert all(body.velocity.is_zero() for body in sim.bodies)
 
 
+def test_the_crowd_walks_into_itself() -> None:
+    # Rows 1.5 m apart walk at each other at 3.12 m/s: without the object checks each body
+    # would walk 3.12 m in 1 s; rows 0 and 1 meet, and the bodies are held short of that.
+    sim = WORKLOADS["crowd"][1](9, 1.0)
+    start = {body.name: body.position.frame.origin.copy() for body in sim.bodies}
+    sim.run()
+    walked = [(body.position.frame.origin - start[body.name]).length() for body in sim.bodies]
+    assert sum(distance < 1.0 for distance in walked) >= 6
+
+
 def test_the_command_prints_a_table_and_writes_json(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     out_file = tmp_path / "bench.json"
     assert main(["bench", "--bodies", "3", "--seconds", "0.2", "--json", str(out_file)]) == 0
     out = capsys.readouterr().out
-    assert "baseline" in out and "walkers" in out and "fallers" in out
+    assert "baseline" in out and "walkers" in out and "fallers" in out and "crowd" in out
     figures = json.loads(out_file.read_text(encoding="utf-8"))
-    assert {f["name"] for f in figures} == {"baseline", "walkers", "fallers"}
+    assert {f["name"] for f in figures} == {"baseline", "walkers", "fallers", "crowd"}
 
 
 @pytest.mark.parametrize(

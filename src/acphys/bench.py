@@ -111,15 +111,15 @@ def _fallers(count: int, seconds: float) -> Simulation:
 
 
 def _crowd(count: int, seconds: float) -> Simulation:
-    """Humans 1.5 m apart in a square, rows facing north and south by turns, walking into each
-    other head-on: every sweep meets the shadows of its neighbours (the object-object checks)."""
+    """Humans 1.5 m apart in a square, columns facing north and east by turns, walking through each
+    other's paths: every sweep meets the shadows of its neighbours (the object-object checks)."""
     side = max(1, math.ceil(math.sqrt(count)))
 
     def body(i: int) -> str:
         row, column = divmod(i, side)
         return (
             f'[[body]]\nname = "c{i}"\nlandblock = "0xA9B4"\non_ground = true\n'
-            f"heading = {180.0 * (row % 2)}\norigin = [{80.0 + 1.5 * column}, {80.0 + 1.5 * row}, 50.0]\n"
+            f"heading = {90.0 * (column % 2)}\norigin = [{80.0 + 1.5 * column}, {80.0 + 1.5 * row}, 50.0]\n"
         )
 
     def event(i: int) -> str:

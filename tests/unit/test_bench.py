@@ -35,13 +35,14 @@ def test_the_walkers_actually_walk() -> None:
 
 
 def test_the_crowd_walks_into_itself() -> None:
-    # Rows 1.5 m apart walk at each other at 3.12 m/s: without the object checks each body
-    # would walk 3.12 m in 1 s; rows 0 and 1 meet, and the bodies are held short of that.
-    sim = WORKLOADS["crowd"][1](9, 1.0)
+    # Columns 1.5 m apart walk north and east by turns at 3.12 m/s: unhindered, each body would
+    # walk 6.24 m in 2 s; the east walkers run into the north walkers' paths and are held short.
+    sim = WORKLOADS["crowd"][1](16, 2.0)
     start = {body.name: body.position.frame.origin.copy() for body in sim.bodies}
     sim.run()
     walked = [(body.position.frame.origin - start[body.name]).length() for body in sim.bodies]
-    assert sum(distance < 1.0 for distance in walked) >= 6
+    assert max(walked) == pytest.approx(6.24, abs=1e-6)
+    assert sum(distance < 5.7 for distance in walked) >= 4
 
 
 def test_the_command_prints_a_table_and_writes_json(

@@ -9,17 +9,23 @@ from typing import TYPE_CHECKING
 
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState, member_namespace
 from acphys.geometry.sphere import DUMMY_SPHERE
+from acphys.math.cell_id import get_block_offset
 from acphys.math.vector import Vector3
 from acphys.transition.transition import Transition
 
 if TYPE_CHECKING:
     from acphys.geometry.sphere import SphereTransition
     from acphys.physics_obj import PhysicsObj
+    from acphys.transition.sphere_path import SpherePath
 
 PS = member_namespace(PhysicsState)
 TS = member_namespace(TransientState)
 OI = member_namespace(ObjectInfoState)
 TR = member_namespace(TransitionState)
+
+#: How much farther apart than touching two spheres must be for :meth:`CollisionReports.out_of_reach`
+#: to skip the exact test: far beyond the rounding of that test's few metre-scale operations.
+REACH_MARGIN = 1e-3
 
 
 class CollisionKind(enum.Enum):
@@ -327,6 +333,44 @@ class CollisionReports:
 
     # -- collisions: a sweep meets this body --------------------------------------------------
 
+    def out_of_reach(self, path: SpherePath) -> bool:
+        """Whether every moving sphere of ``path`` (at ``check_pos``) misses every sphere of this
+        body by more than ``REACH_MARGIN``, so that ``CSphere::intersects_sphere`` could only
+        answer OK and change nothing.
+
+        Not a retail routine: a shortcut for :meth:`find_obj_collisions`, which would otherwise
+        test every pair through ``intersects_sphere_placed``. The body's sphere centres are
+        placed as that routine places them (``localtoglobal`` of the scaled centre, plus the
+        block offset), without building vectors; outside a step-down, every branch of
+        ``intersects_sphere`` answers OK without side effects for spheres that do not touch
+        (acclient.c:359211-359385), and the caller keeps step-downs for the exact test. A NaN
+        anywhere is never rejected.
+        """
+        frame = self.position.frame
+        m = frame.m
+        origin = frame.origin
+        ox, oy, oz = origin.x, origin.y, origin.z
+        check_cell = path.check_pos.objcell_id
+        if (check_cell >> 16) != (self.position.objcell_id >> 16):
+            block = get_block_offset(check_cell, self.position.objcell_id)
+            ox, oy, oz = ox + block.x, oy + block.y, oz + block.z
+        scale = self.scale
+        moving_spheres = path.global_sphere
+        for sphere in self.part_array.get_sphere():
+            c = sphere.center
+            cx, cy, cz = c.x * scale, c.y * scale, c.z * scale
+            x = m[6] * cz + m[0] * cx + m[3] * cy + ox
+            y = m[7] * cz + m[1] * cx + m[4] * cy + oy
+            z = m[8] * cz + m[2] * cx + m[5] * cy + oz
+            radius = sphere.radius * scale + REACH_MARGIN
+            for moving in moving_spheres:
+                center = moving.center
+                dx, dy, dz = center.x - x, center.y - y, center.z - z
+                limit = radius + moving.radius
+                if not dx * dx + dy * dy + dz * dz > limit * limit:
+                    return False
+        return True
+
     def find_obj_collisions(self, transition: SphereTransition) -> TransitionState:
         """Collide the transition's moving spheres with this body (found through a cell's shadow).
 
@@ -380,7 +424,13 @@ class CollisionReports:
                 result = cylsphere.intersects_sphere_placed(self.position, self.scale, transition)
                 if result != TR.OK:
                     break
-        elif parts is not None and parts.get_num_sphere() and not exempt and not info.missile_ignore(self):
+        elif (
+            parts is not None
+            and parts.get_num_sphere()
+            and not exempt
+            and not info.missile_ignore(self)
+            and (path.step_down or not self.out_of_reach(path))
+        ):
             for sphere in parts.get_sphere():
                 result = sphere.intersects_sphere_placed(self.position, self.scale, transition, is_creature)
                 if result != TR.OK:

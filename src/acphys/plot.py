@@ -100,7 +100,7 @@ class PathCollector:
         except ValueError:
             cell_id = -1
         if not 0 <= cell_id <= 0xFFFFFFFF:
-            raise TraceError(f"{where}: cell must be a hex cell id like \"0xA9B40021\", got {cell!r}")
+            raise TraceError(f'{where}: cell must be a hex cell id like "0xA9B40021", got {cell!r}')
         origin = record.get("origin")
         if not (isinstance(origin, list) and len(origin) == 3 and all(_number(v) for v in origin)):
             raise TraceError(f"{where}: origin must be 3 numbers, got {origin!r}")

@@ -132,8 +132,11 @@ def ascii_map(paths: Sequence[BodyPath], width: int = 64, height: int = 20) -> l
             else:
                 steps = max(abs(row - previous[0]), abs(column - previous[1]))
                 for k in range(1, steps + 1):
-                    mark(previous[0] + round((row - previous[0]) * k / steps),
-                         previous[1] + round((column - previous[1]) * k / steps), index)
+                    mark(
+                        previous[0] + round((row - previous[0]) * k / steps),
+                        previous[1] + round((column - previous[1]) * k / steps),
+                        index,
+                    )
             previous = (row, column)
     ends = {cell(path.x[-1], path.y[-1]): index for index, path in enumerate(paths) if len(path)}
 
@@ -154,8 +157,12 @@ def ascii_map(paths: Sequence[BodyPath], width: int = 64, height: int = 20) -> l
         line.append("|")
         lines.append(line)
     lines.append(Text("+" + "-" * columns + "+"))
-    lines.append(Text(f"x (east) {x0:.1f} to {x1:.1f} m, y (north) {y0:.1f} to {y1:.1f} m, landblock-global; "
-                      f"one column {scale:.3g} m, one row {2 * scale:.3g} m; {CROSSING}: paths share a cell"))
+    lines.append(
+        Text(
+            f"x (east) {x0:.1f} to {x1:.1f} m, y (north) {y0:.1f} to {y1:.1f} m, landblock-global; "
+            f"one column {scale:.3g} m, one row {2 * scale:.3g} m; {CROSSING}: paths share a cell"
+        )
+    )
     legend = Text()
     for index, path in enumerate(paths):
         if index:

@@ -99,7 +99,6 @@ def touch(curr: Vector3, movement: Vector3) -> float:
 class TestAdjustSphereToPoly:
     """CPolygon::adjust_sphere_to_poly with the reconstructed sign test (see its docstring)."""
 
-
     def test_start_within_radius_is_one(self) -> None:
         # radius <= |dist| fails (0.5 > 0.3) -> 1.0 (acclient.c:359528).
         assert touch(Vector3(0, 0, 1.3), UP * -1) == 1.0
@@ -321,8 +320,11 @@ class TestCollide:
 
 
 class TestContact:
-    wall = staticmethod(lambda: build_boxes_tree([(Vector3(-5, -5, 0), Vector3(5, 5, 1)),
-                                                  (Vector3(1, -5, 1), Vector3(2, 5, 4))]))
+    wall = staticmethod(
+        lambda: build_boxes_tree(
+            [(Vector3(-5, -5, 0), Vector3(5, 5, 1)), (Vector3(1, -5, 1), Vector3(2, 5, 4))]
+        )
+    )
 
     def test_walking_into_wall_steps_up_then_slides(self) -> None:
         # Sphere 0 heads into the -x face (dist 0.4, N·m -0.4): step_sphere_up with the global normal
@@ -359,8 +361,9 @@ class TestContact:
         # Sphere 1 (centre z 2.5) runs into the -x face of a ledge above sphere 0's reach: slide_sphere
         # with global_sphere[0] from global_curr_center[0] (acclient.c:361427, 361048). Step (0.3,0.2,0),
         # direction (-1,0,0)x(0,0,1) = (0,1,0): keep (0,0.2,0), move by (-0.3,0,0) -> SLID.
-        ledge = build_boxes_tree([(Vector3(-5, -5, 0), Vector3(5, 5, 1)),
-                                  (Vector3(1, -5, 2.2), Vector3(2, 5, 4))])
+        ledge = build_boxes_tree(
+            [(Vector3(-5, -5, 0), Vector3(5, 5, 1)), (Vector3(1, -5, 2.2), Vector3(2, 5, 4))]
+        )
         path = make_path(Vector3(0.4, 0, 1.0), Vector3(0.7, 0.2, 1.0), second=True)
         sweep = Sweep(path, OIS.CONTACT)
         sweep.collision_info.set_contact_plane(Plane.horizontal(1.0), False)
@@ -379,8 +382,9 @@ class TestContact:
         assert close(path.neg_collision_normal, Vector3(0, 0, -1))
         # A sphere-1 touch wins and gives step-up flag 0 (acclient.c:361434): a ceiling face
         # (-z at z 2.9) that sphere 1 (centre 2.45) touches while moving sideways.
-        ceiling = build_boxes_tree([(Vector3(-5, -5, 0), Vector3(5, 5, 1)),
-                                    (Vector3(-5, -5, 2.9), Vector3(5, 5, 4))])
+        ceiling = build_boxes_tree(
+            [(Vector3(-5, -5, 0), Vector3(5, 5, 1)), (Vector3(-5, -5, 2.9), Vector3(5, 5, 4))]
+        )
         path = make_path(Vector3(0, 0, 0.95), Vector3(0.1, 0, 0.95), second=True)
         assert ceiling.find_collisions(Sweep(path, OIS.CONTACT), 1.0) == TS.OK
         assert path.neg_poly_hit and not path.neg_step_up

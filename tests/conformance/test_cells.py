@@ -34,9 +34,7 @@ WATER_WORD = 16 << 2
 
 
 def _block(block_id: int, height: list[int] | None = None, terrain: list[int] | None = None) -> LandBlock:
-    return LandBlock(
-        LandBlockStruct(block_id, height or [10] * 81, terrain or [GRASS_WORD] * 81, TABLE)
-    )
+    return LandBlock(LandBlockStruct(block_id, height or [10] * 81, terrain or [GRASS_WORD] * 81, TABLE))
 
 
 def _landscape(*blocks: LandBlock) -> Landscape:
@@ -159,8 +157,9 @@ def test_find_cell_list_for_sphere_places_the_local_sphere() -> None:
     frame = Frame(Vector3(36.0, 36.0, 10.0))
     frame.set_heading(90.0)
     # Local +y faces global +x at heading 90: the centre lands at (47.5, 36) (acclient.c:347329).
-    ObjCell.find_cell_list_for_sphere(Position(_id(WEST, 1, 1), frame), Sphere(Vector3(0, 11.5, 0), 1.0),
-                                      cell_array)
+    ObjCell.find_cell_list_for_sphere(
+        Position(_id(WEST, 1, 1), frame), Sphere(Vector3(0, 11.5, 0), 1.0), cell_array
+    )
     assert cell_array.cell_ids() == [0xA9B4000A, 0xA9B40012]
 
 

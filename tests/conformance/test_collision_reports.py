@@ -206,8 +206,12 @@ def test_a_static_object_reports_as_the_environment_and_is_not_tracked(world) ->
 
 def test_an_object_reporting_as_environment_is_tracked_but_ends_silently(world) -> None:
     a = place(world, name="a", state=PS.REPORT_COLLISIONS, origin=(96.0, 96.0, 0.0))
-    door = place(world, name="door", state=PS.REPORT_COLLISIONS | PS.REPORT_COLLISIONS_AS_ENVIRONMENT,
-                 origin=(97.0, 96.0, 0.0))
+    door = place(
+        world,
+        name="door",
+        state=PS.REPORT_COLLISIONS | PS.REPORT_COLLISIONS_AS_ENVIRONMENT,
+        origin=(97.0, 96.0, 0.0),
+    )
     assert a.handle_all_collisions(hit(door), False, False) is True
     # report_object_collision: REPORT_COLLISIONS_AS_ENVIRONMENT -> environment (acclient.c:320249-320251).
     assert a.step_events == ["collision:environment"] and door.step_events == []
@@ -225,8 +229,13 @@ def test_an_object_reporting_as_environment_is_tracked_but_ends_silently(world) 
 
 def test_a_missile_gets_an_attack_report_with_the_quadrant_and_stops_being_a_missile(world) -> None:
     target = post(world, "target", (96.0, 96.0, 0.0), PS.REPORT_COLLISIONS, height=3.0)
-    arrow = post(world, "arrow", (95.0, 97.0, 2.5),
-                 PS.REPORT_COLLISIONS | PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED | PS.GRAVITY, height=0.2)
+    arrow = post(
+        world,
+        "arrow",
+        (95.0, 97.0, 2.5),
+        PS.REPORT_COLLISIONS | PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED | PS.GRAVITY,
+        height=0.2,
+    )
     got_arrow, got_target = listen(arrow), listen(target)
     assert arrow.handle_all_collisions(hit(target), False, False) is True
     # AtkCollisionProfile: part -1, location = determine_quadrant(target pos, target height, arrow pos)

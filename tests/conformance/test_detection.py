@@ -180,7 +180,10 @@ def test_the_tick_runs_detection(world: World) -> None:
     ],
 )
 def test_bad_cylinders_are_refused(
-    scene: tuple[PhysicsObj, PhysicsObj, DetectionManager], context: int, radius: float, object_id: int,
+    scene: tuple[PhysicsObj, PhysicsObj, DetectionManager],
+    context: int,
+    radius: float,
+    object_id: int,
     message: str,
 ) -> None:
     _, _, manager = scene
@@ -201,8 +204,13 @@ def cell_at(x: float, y: float) -> int:
 def lookout(world: World) -> tuple[PhysicsObj, DetectionManager]:
     """A watcher at (96, 96) (kept active by a motion table) with a 10-m global cylinder."""
     world.set_flat_ground(LANDBLOCK, 50.0)
-    watcher = place(world, name="watcher", origin=(96.0, 96.0, 50.0), on_ground=True,
-                    motion_table=builtin_motion_table("humanoid"))
+    watcher = place(
+        world,
+        name="watcher",
+        origin=(96.0, 96.0, 50.0),
+        on_ground=True,
+        motion_table=builtin_motion_table("humanoid"),
+    )
     watcher.detection_manager = DetectionManager(watcher)
     watcher.detection_manager.create_detection_cylsphere(GLOBAL, 10.0, 0)
     return watcher, watcher.detection_manager

@@ -129,9 +129,12 @@ def test_no_portal_no_transit_through_a_wall() -> None:
     rooms = [*ROOMS, RoomSpec(C, V(100, 104, 10), V(104, 108, 13))]
     room_a, room_b, room_c = build_rooms(rooms, DOORS)
     source = Cells(room_a, room_b, room_c)
-    assert room_c.structure.sphere_intersects_cell(
-        Sphere(room_c.pos.frame.globaltolocal(V(102, 103.7, 10.6)), 0.5)
-    ) == CELL_PARTIALLY_INSIDE
+    assert (
+        room_c.structure.sphere_intersects_cell(
+            Sphere(room_c.pos.frame.globaltolocal(V(102, 103.7, 10.6)), 0.5)
+        )
+        == CELL_PARTIALLY_INSIDE
+    )
     assert transit(room_a, source, V(102, 103.7, 10.6), 0.5) == []
     assert [p.other_cell_id for p in room_c.portals] == []
 

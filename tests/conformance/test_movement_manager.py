@@ -89,8 +89,10 @@ def test_types_1_to_5_go_to_the_motion_interpreter(
 
 @pytest.mark.parametrize(
     ("ms_type", "expected"),
-    [(MovementType.TURN_TO_HEADING, MovementType.TURN_TO_HEADING),
-     (MovementType.MOVE_TO_POSITION, MovementType.MOVE_TO_POSITION)],
+    [
+        (MovementType.TURN_TO_HEADING, MovementType.TURN_TO_HEADING),
+        (MovementType.MOVE_TO_POSITION, MovementType.MOVE_TO_POSITION),
+    ],
 )
 def test_types_6_to_9_go_to_the_move_to_manager(
     body: PhysicsObj, ms_type: MovementType, expected: MovementType

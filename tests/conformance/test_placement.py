@@ -93,8 +93,9 @@ class TestAdjustPosition:
 class TestSetPosition:
     def test_no_scatter_tries_is_a_general_failure(self, world: World) -> None:
         body = human(world)
-        sps = SetPositionStruct(Position(0xA9B40025, Frame(V(96.0, 96.0, 50.0))),
-                                SetPositionFlags.RANDOM_SCATTER)
+        sps = SetPositionStruct(
+            Position(0xA9B40025, Frame(V(96.0, 96.0, 50.0))), SetPositionFlags.RANDOM_SCATTER
+        )
         # RANDOMSCATTER goes straight to SetScatterPositionInternal (acclient.c:323268), whose
         # result starts at 1 and no try changes it (acclient.c:323196-323198).
         assert body.set_position(sps) == SetPositionError.GENERAL_FAILURE

@@ -123,8 +123,12 @@ class TestBody:
 
     @pytest.mark.parametrize(
         ("cell", "is_player", "start", "limit"),
-        [(0x0004, False, 10.0, 50.0), (0x0004, True, 10.0, 50.0), (0x0100, False, 5.0, 20.0),
-         (0x0100, True, 5.0, 20.0)],
+        [
+            (0x0004, False, 10.0, 50.0),
+            (0x0004, True, 10.0, 50.0),
+            (0x0100, False, 5.0, 20.0),
+            (0x0100, True, 5.0, 20.0),
+        ],
     )
     def test_constraint_distances(self, world, body, cell, is_player, start, limit):
         # GetStartConstraintDistance (acclient.c:315884) and GetMaxConstraintDistance (315908).

@@ -24,8 +24,13 @@ TICK = 1.0 / 30.0
 
 
 def body(
-    world: World, name: str, x: float, y: float, *,
-    spheres: bool = True, motion_table: MotionTable | None = None,
+    world: World,
+    name: str,
+    x: float,
+    y: float,
+    *,
+    spheres: bool = True,
+    motion_table: MotionTable | None = None,
 ) -> PhysicsObj:
     """A grounded body at (x, y, 50)."""
     origin = (x, y, 50.0)
@@ -157,8 +162,9 @@ def test_unanswered_target_times_out_on_the_wall_clock(world: World) -> None:
     missing = 0x70000001
     at(world, 0.0)
     walker.movement_manager.perform_movement(
-        MovementStruct(MovementType.MOVE_TO_OBJECT, object_id=missing, top_level_id=missing,
-                       params=MovementParameters())
+        MovementStruct(
+            MovementType.MOVE_TO_OBJECT, object_id=missing, top_level_id=missing, params=MovementParameters()
+        )
     )
     manager = walker.target_manager
     # No such object: the target stays Undef, stamped with Timer::cur_time (acclient.c:328620-328630).
@@ -272,8 +278,9 @@ def test_context_reports_do_not_reach_the_movement_manager(world: World) -> None
     walker = body(world, "walker", 96.0, 96.0, motion_table=builtin_motion_table("humanoid"))
     missing = 0x70000001
     walker.movement_manager.perform_movement(
-        MovementStruct(MovementType.MOVE_TO_OBJECT, object_id=missing, top_level_id=missing,
-                       params=MovementParameters())
+        MovementStruct(
+            MovementType.MOVE_TO_OBJECT, object_id=missing, top_level_id=missing, params=MovementParameters()
+        )
     )
     moveto = walker.movement_manager.moveto_manager
     there = place(world, name="marker", spheres=False, origin=(96.0, 100.0, 50.0)).position
@@ -313,8 +320,14 @@ def test_move_to_object_walks_to_a_standing_target(world: World) -> None:
     target = body(world, "target", 96.0, 104.0, motion_table=table("humanoid"))
     run(world, [walker, target], 0.5)
     walker.movement_manager.perform_movement(
-        MovementStruct(MovementType.MOVE_TO_OBJECT, object_id=target.id, top_level_id=target.id,
-                       radius=HUMAN_RADIUS, height=target.get_height(), params=MovementParameters())
+        MovementStruct(
+            MovementType.MOVE_TO_OBJECT,
+            object_id=target.id,
+            top_level_id=target.id,
+            radius=HUMAN_RADIUS,
+            height=target.get_height(),
+            params=MovementParameters(),
+        )
     )
     moveto = walker.movement_manager.moveto_manager
     # MoveToObject -> set_target(0, id, 0.5, 0.0) (acclient.c:345220); the target answers inside the call, so
@@ -323,8 +336,14 @@ def test_move_to_object_walks_to_a_standing_target(world: World) -> None:
     assert [v.object_id for v in target.target_manager.voyeur_table] == [walker.id]
     walk_until_done(world, walker, target)
     # Arrival: the cylinder distance is within distance_to_object (acclient.c:345688).
-    gap = cylinder_distance(walker.get_radius(), walker.get_height(), walker.position,
-                            HUMAN_RADIUS, target.get_height(), target.position)
+    gap = cylinder_distance(
+        walker.get_radius(),
+        walker.get_height(),
+        walker.position,
+        HUMAN_RADIUS,
+        target.get_height(),
+        target.position,
+    )
     assert gap <= MovementParameters().distance_to_object
     # CleanUp clears the target, which leaves the target's voyeur table (acclient.c:345165, 328283-328285).
     assert walker.target_manager.target_info is None
@@ -340,8 +359,14 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
     goal = place(world, name="goal", spheres=False, origin=(110.0, 104.0, 50.0)).position
     target.move_to_position(goal, MovementParameters())
     walker.movement_manager.perform_movement(
-        MovementStruct(MovementType.MOVE_TO_OBJECT, object_id=target.id, top_level_id=target.id,
-                       radius=HUMAN_RADIUS, height=target.get_height(), params=MovementParameters())
+        MovementStruct(
+            MovementType.MOVE_TO_OBJECT,
+            object_id=target.id,
+            top_level_id=target.id,
+            radius=HUMAN_RADIUS,
+            height=target.get_height(),
+            params=MovementParameters(),
+        )
     )
     voyeur = next(iter(target.target_manager.voyeur_table))
     sent = [voyeur.last_sent_position.frame.origin.x]
@@ -373,7 +398,13 @@ def test_move_to_object_follows_a_walking_target(world: World) -> None:
     assert len(sent) >= 6
     assert [round(b - a, 3) for a, b in itertools.pairwise(stamps[2:])] == [0.533] * (len(sent) - 3)
     assert [round(b - a, 3) for a, b in itertools.pairwise(sent[2:-1])] == [1.664] * (len(sent) - 4)
-    gap = cylinder_distance(walker.get_radius(), walker.get_height(), walker.position,
-                            HUMAN_RADIUS, target.get_height(), target.position)
+    gap = cylinder_distance(
+        walker.get_radius(),
+        walker.get_height(),
+        walker.position,
+        HUMAN_RADIUS,
+        target.get_height(),
+        target.position,
+    )
     assert gap <= MovementParameters().distance_to_object
     assert len(target.target_manager.voyeur_table) == 0

@@ -39,11 +39,18 @@ def _rng_heights(rng: random.Random) -> list[int]:
     return [rng.randrange(256) for _ in range(81)]
 
 
-def _block(block_id: int = HOLTBURG, height: list[int] | None = None,
-           terrain: list[int] | None = None, table: list[float] | None = None) -> LandBlockStruct:
-    return LandBlockStruct(block_id, height if height is not None else list(range(81)),
-                           terrain if terrain is not None else [GRASS_WORD] * 81,
-                           table if table is not None else TABLE)
+def _block(
+    block_id: int = HOLTBURG,
+    height: list[int] | None = None,
+    terrain: list[int] | None = None,
+    table: list[float] | None = None,
+) -> LandBlockStruct:
+    return LandBlockStruct(
+        block_id,
+        height if height is not None else list(range(81)),
+        terrain if terrain is not None else [GRASS_WORD] * 81,
+        table if table is not None else TABLE,
+    )
 
 
 def _c_split(x: int, y: int) -> bool:
@@ -209,7 +216,8 @@ def test_find_terrain_poly_diagonal_takes_first_triangle() -> None:
     # The cell named by the caller is searched, not the one under the point (acclient.c:354873)
     assert lb.find_terrain_poly(Vector3(30.0, 3.0, 0.0), cell_id=0xA9B40001) is None
     assert lb.find_terrain_poly(Vector3(30.0, 3.0, 0.0), cell_id=0xA9B40009) is lb.find_terrain_poly(
-        Vector3(30.0, 3.0, 0.0))
+        Vector3(30.0, 3.0, 0.0)
+    )
 
 
 # --- terrain types and water ------------------------------------------------------------
@@ -261,7 +269,7 @@ def test_water_depth_none_partial_full() -> None:
     # PARTIALLY cell (6, 0): nearest corner decides (acclient.c:353679-353707)
     part = 0xA9B40000 | (1 + 8 * 6)
     assert lb.get_water_depth(part, Vector3(145.0, 3.0, 0.0)) == float32(0.45)  # SW corner is water
-    assert lb.get_water_depth(part, Vector3(160.0, 3.0, 0.0)) == float32(0.1)   # SE corner is solid
+    assert lb.get_water_depth(part, Vector3(160.0, 3.0, 0.0)) == float32(0.1)  # SE corner is solid
     assert lb.get_water_depth(part, Vector3(145.0, 20.0, 0.0)) == float32(0.1)  # NW corner is solid
     assert lb.calc_water_depth(part, Vector3(145.0, 3.0, 0.0)) == float32(0.44999999)
 

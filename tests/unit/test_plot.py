@@ -119,7 +119,6 @@ def test_unknown_bodies_are_named() -> None:
         select_bodies({"a": one_sample_path()}, ["nobody"])
 
 
-
 # -- plot -------------------------------------------------------------------------------------
 
 

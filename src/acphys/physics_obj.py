@@ -707,8 +707,16 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self.set_velocity(self.position.frame.localtoglobalvec(local_velocity))
 
     def set_omega(self, new_omega: Vector3) -> None:
-        """Retail: CPhysicsObj::set_omega @ 0x0050F6D0 (acclient.c:316612)"""
+        """Take ``new_omega`` (rad/s). Retail takes any value; an omega whose squared length
+        overflows would turn the frame to NaN in ``grotate``, so acphys refuses it.
+
+        Retail: CPhysicsObj::set_omega @ 0x0050F6D0 (acclient.c:316612)
+        """
         _require_finite("omega", new_omega)
+        if not math.isfinite(new_omega.length_squared()):
+            raise ValueError(
+                f"omega is too large to rotate by: ({new_omega.x}, {new_omega.y}, {new_omega.z})"
+            )
         self.omega = new_omega.copy()
 
     def set_heading(self, degrees: float) -> None:

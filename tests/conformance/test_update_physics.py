@@ -285,3 +285,13 @@ class TestOmega:
         assert (frame.qw, frame.qx, frame.qy, frame.qz) == pytest.approx(
             (expected.qw, expected.qx, expected.qy, expected.qz), abs=1e-12
         )
+
+
+def test_an_omega_too_large_to_rotate_by_is_refused(world) -> None:
+    # Frame::grotate squares omega's length (acclient.c:357421); past float range it would
+    # turn the frame to NaN, so set_omega refuses it rather than letting the body go NaN.
+    body = place(world)
+    with pytest.raises(ValueError, match="too large to rotate by"):
+        body.set_omega(Vector3(1e300, 0.0, 0.0))
+    body.set_omega(Vector3(1e3, 0.0, 0.0))
+    assert body.omega == Vector3(1e3, 0.0, 0.0)

@@ -123,7 +123,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             entry = read.table(ctx, sphere_key, item, ("center", "radius"))
             if "center" not in entry or "radius" not in entry:
                 raise ctx.fail(sphere_key, "a sphere needs center = [x, y, z] and radius")
-            center = read.vector(ctx, f"{sphere_key}.center", entry["center"])
+            center = read.local_point(ctx, f"{sphere_key}.center", entry["center"])
             radius = read.ranged(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
             spheres.append(Sphere(center, radius))
         cylspheres = []
@@ -134,7 +134,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             entry = read.table(ctx, cyl_key, item, ("low_pt", "radius", "height"))
             if any(part not in entry for part in ("low_pt", "radius", "height")):
                 raise ctx.fail(cyl_key, "a cylsphere needs low_pt = [x, y, z], radius and height")
-            low_pt = read.vector(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
+            low_pt = read.local_point(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
             radius = read.ranged(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
             height = read.ranged(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
             cylspheres.append(CylSphere(low_pt, radius, height))
@@ -155,7 +155,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             part = entry.get("part", -1)
             if part not in (-1, 0) or isinstance(part, bool):
                 raise ctx.fail(f"{holding_key}.part", f"a scenario setup has one part: -1 or 0, got {part!r}")
-            origin = read.vector(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
+            origin = read.local_point(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
             heading = read.ranged(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
             holding[where] = LocationType(part & 0xFFFFFFFF, Frame.from_heading(origin, heading))
 
@@ -336,11 +336,22 @@ def parse_scenario(
     ``folder`` is where relative ``[data]`` paths resolve (the scenario file's folder; the
     current directory when None).
     """
-    ctx = Ctx(source)
     try:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
+    return build_scenario(document, source, default_name, folder)
+
+
+def build_scenario(
+    document: dict[str, Any],
+    source: str = "<scenario>",
+    default_name: str = "scenario",
+    folder: str | Path | None = None,
+) -> Simulation:
+    """Build a :class:`Simulation` from a scenario already read into Python values (what
+    ``tomllib`` gives for the TOML), checking every key as :func:`parse_scenario` does."""
+    ctx = Ctx(source)
     read.table(ctx, "", document, TOP_KEYS)
     header = _read_header(ctx, document.get("scenario", {}), default_name)
     tables = read_motion_tables(ctx, document.get("motion_table", {}))
@@ -410,4 +421,4 @@ def builtin_scenarios() -> list[str]:
     return sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml"))
 
 
-__all__ = ["ScenarioError", "builtin_scenarios", "load_scenario", "parse_scenario"]
+__all__ = ["ScenarioError", "build_scenario", "builtin_scenarios", "load_scenario", "parse_scenario"]

@@ -275,7 +275,7 @@ def _parent_apply(
             raise ctx.fail(
                 f"{key}.part", f"expected -1 (the whole body) or a part below {parts}, got {part!r}"
             )
-        origin = read.vector(ctx, f"{key}.origin", table.get("origin", [0.0, 0.0, 0.0]))
+        origin = read.local_point(ctx, f"{key}.origin", table.get("origin", [0.0, 0.0, 0.0]))
         heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
         frame = Frame.from_heading(origin, heading)
         attach = lambda obj: obj.set_parent(parent, part, frame)  # noqa: E731

@@ -53,10 +53,27 @@ def ranged(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low:
     return result
 
 
+#: How far from its own origin a shape's geometry may reach, in metres (a wall, a house, a tower):
+#: bounded so that a typo cannot make one object shadow into millions of cells.
+SHAPE_EXTENT = 1000.0
+
+
 def vector(ctx: Ctx, key: str, value: Any) -> Vector3:
     if not isinstance(value, list) or len(value) != 3:
         raise ctx.fail(key, f"expected a list of 3 numbers, got {kind(value)}")
     return Vector3(*(number(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)))
+
+
+def local_point(ctx: Ctx, key: str, value: Any) -> Vector3:
+    """A point of a shape, in its own frame: within ``SHAPE_EXTENT`` of the origin on each axis."""
+    point = vector(ctx, key, value)
+    if max(abs(point.x), abs(point.y), abs(point.z)) > SHAPE_EXTENT:
+        raise ctx.fail(
+            key,
+            f"each coordinate must be within ±{SHAPE_EXTENT:g} m of the shape's origin, "
+            f"got ({point.x:g}, {point.y:g}, {point.z:g})",
+        )
+    return point
 
 
 def string(ctx: Ctx, key: str, value: Any) -> str:
@@ -129,9 +146,20 @@ def kind(value: Any) -> str:
     return type(value).__name__
 
 
+#: The fastest spin a scenario may give, in degrees per second about each axis (100 turns a second).
+MAX_SPIN = 36000.0
+
+
 def degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
-    """An angular velocity given in degrees per second, returned in radians per second."""
+    """An angular velocity given in degrees per second (at most ``MAX_SPIN`` about each axis),
+    returned in radians per second."""
     degrees = vector(ctx, key, value)
+    if max(abs(degrees.x), abs(degrees.y), abs(degrees.z)) > MAX_SPIN:
+        raise ctx.fail(
+            key,
+            f"each component must be within ±{MAX_SPIN:g} deg/s, "
+            f"got ({degrees.x:g}, {degrees.y:g}, {degrees.z:g})",
+        )
     return Vector3(*(math.radians(component) for component in degrees))
 
 

@@ -160,7 +160,7 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
 def _face(ctx: Ctx, key: str, value: Any) -> Polygon:
     if not isinstance(value, list) or len(value) < 3:
         raise ctx.fail(key, f"expected a face of at least 3 points [x, y, z], got {read.kind(value)}")
-    points = [read.vector(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)]
+    points = [read.local_point(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)]
     try:
         return Polygon(points)
     except ValueError as error:
@@ -183,8 +183,8 @@ def read_solids(ctx: Ctx, key: str, table: dict[str, Any]) -> BSPTree | None:
         if "min" not in entry or "max" not in entry:
             raise ctx.fail(box_key, "a box needs min = [x, y, z] and max = [x, y, z]")
         lo, hi = (
-            read.vector(ctx, f"{box_key}.min", entry["min"]),
-            read.vector(ctx, f"{box_key}.max", entry["max"]),
+            read.local_point(ctx, f"{box_key}.min", entry["min"]),
+            read.local_point(ctx, f"{box_key}.max", entry["max"]),
         )
         try:
             solids.append((box_key, box_faces(lo, hi)))
@@ -317,8 +317,8 @@ def _read_rooms(
                 f"{room_key}.name", f"room name {name!r} is taken (rooms need distinct names, not 'outside')"
             )
         lo, hi = (
-            read.vector(ctx, f"{room_key}.min", entry["min"]),
-            read.vector(ctx, f"{room_key}.max", entry["max"]),
+            read.local_point(ctx, f"{room_key}.min", entry["min"]),
+            read.local_point(ctx, f"{room_key}.max", entry["max"]),
         )
         if not (lo.x < hi.x and lo.y < hi.y and lo.z < hi.z):
             raise ctx.fail(room_key, f"min {_axes(lo)} must be below max {_axes(hi)} on every axis")
@@ -363,8 +363,8 @@ def _read_doorways(
                 f"{door_key}.between", f"a doorway joins two different places, got {between[0]!r} twice"
             )
         lo, hi = _placed_box(
-            read.vector(ctx, f"{door_key}.min", entry["min"]),
-            read.vector(ctx, f"{door_key}.max", entry["max"]),
+            read.local_point(ctx, f"{door_key}.min", entry["min"]),
+            read.local_point(ctx, f"{door_key}.max", entry["max"]),
             origin,
             heading,
         )

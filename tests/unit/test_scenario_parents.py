@@ -65,3 +65,45 @@ def test_the_tossed_lantern_lands_and_rests_on_the_ground(records) -> None:
     assert last["origin"][2] == pytest.approx(50.0, abs=1e-9)  # the sphere (r 0.1, centre 0.1 up) on z 50
     assert last["origin"][0] > 96.7 + 2.0  # thrown east
     assert all(r["origin"][2] >= 50.0 - 1e-9 for r in lantern)
+
+
+def test_holding_ones_holder_is_refused_in_the_trace(tmp_path: Path) -> None:
+    text = """
+[scenario]
+duration = 1.0
+
+[[landblock]]
+id = "0xA9B4"
+height = 50.0
+
+[[body]]
+name = "a"
+landblock = "0xA9B4"
+origin = [96.0, 96.0, 50.0]
+
+[[body]]
+name = "b"
+landblock = "0xA9B4"
+origin = [90.0, 96.0, 50.0]
+
+[[event]]
+at = 0.1
+body = "b"
+action = "set_parent"
+target = "a"
+origin = [0.7, 0.0, 1.0]
+
+[[event]]
+at = 0.5
+body = "a"
+action = "set_parent"
+target = "b"
+"""
+    trace = tmp_path / "cycle.jsonl"
+    sim = acphys.parse_scenario(text, source="cycle.toml")
+    sim.run(trace=trace)
+    events = [
+        e for line in trace.read_text(encoding="utf-8").splitlines() for e in json.loads(line)["events"]
+    ]
+    assert "set_parent:b:cycle" in events
+    assert sim.body("b").parent is sim.body("a") and sim.body("a").parent is None

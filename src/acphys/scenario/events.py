@@ -281,7 +281,11 @@ def _parent_apply(
         attach = lambda obj: obj.set_parent(parent, part, frame)  # noqa: E731
 
     def hold(obj: PhysicsObj) -> None:
-        held = attach(obj)
+        try:
+            held = attach(obj)
+        except ValueError:  # the target is held, at some depth, by this body
+            obj.record_event(f"set_parent:{name}:cycle")
+            return
         obj.record_event(f"set_parent:{name}" if held else f"set_parent:{name}:failed")
         if held:
             parent.record_event(f"holds:{obj.name}")

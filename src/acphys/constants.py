@@ -1,35 +1,33 @@
 """Retail physics constants, each with the place it is defined or read.
 
-The retail client computes in float32 on the x87; acphys computes in float64
-and stores each constant with the value retail holds (for float32 globals,
-the float32 value widened to float64). Line numbers are into the monolithic
-``acclient.c`` of build 11.4186 (see ``retail_index.tsv``).
+Retail stores float32 and computes in double on the x87 (see
+:mod:`acphys.precision`); each constant here has the value retail holds (for
+float32 globals and literals, the float32 value widened to float64). A literal
+the decompiler prints with about eight significant digits (``0.00019999999``)
+is a float32 constant; double literals print with sixteen. Line numbers are
+into the monolithic ``acclient.c`` of build 11.4186 (see ``retail_index.tsv``).
 """
 
 from __future__ import annotations
 
 import math
-import struct
 
-
-def float32(value: float) -> float:
-    """Round ``value`` to the nearest IEEE float32, returned as a Python float."""
-    return struct.unpack("<f", struct.pack("<f", value))[0]
-
+from acphys.precision import f32
 
 #: ``PhysicsGlobals::gravity`` (acclient_data.h; read by calc_acceleration, acclient.c:317814).
-GRAVITY: float = float32(-9.8000002)
+GRAVITY: float = f32(-9.8000002)
 
 #: ``PhysicsGlobals::floor_z = cos(3437.746770784939)`` (sub_70D920, acclient.c:800530).
 #: The literal is 60 × 180/π: a degrees/radians slip, so the steepest walkable
 #: slope is acos(0.66417414) ≈ 48.38°, not the intended 60°.
-FLOOR_Z: float = float32(math.cos(3437.746770784939))
+FLOOR_Z: float = f32(math.cos(3437.746770784939))
 
 #: ``z_for_landing`` = sin 5°: walkable allowance when not on walkable ground (acclient.c:40376).
-LANDING_Z: float = float32(0.0871557)
+LANDING_Z: float = f32(0.0871557)
 
-#: The retail epsilon written as ``0.00019999999`` throughout the decompilation.
-EPSILON: float = 0.00019999999
+#: The retail epsilon written as ``0.00019999999`` throughout the decompilation: the float32
+#: ``F_EPSILON`` (``const float F_EPSILON_37``, acclient_data.h:598), i.e. float32(0.0002).
+EPSILON: float = f32(0.00019999999)
 
 #: Terminal speed: ``velocity_mag2 > 50.0 * 50.0`` normalises to 50
 #: (UpdatePhysicsInternal, acclient.c:317740).
@@ -51,16 +49,16 @@ HUGE_QUANTUM: float = 2.0
 ACTIVITY_DISTANCE: float = 96.0
 
 #: ``DEFAULT_FRICTION`` (acclient_data.h:1430), set by the CPhysicsObj constructor (acclient.c:319489).
-DEFAULT_FRICTION: float = float32(0.94999999)
+DEFAULT_FRICTION: float = f32(0.94999999)
 
 #: ``DEFAULT_ELASTICITY`` (acclient_data.h:1431); ``set_elasticity`` clamps to [0, 0.1] (acclient.c:317060).
-DEFAULT_ELASTICITY: float = float32(0.050000001)
+DEFAULT_ELASTICITY: float = f32(0.050000001)
 
 #: Upper bound ``set_elasticity`` clamps to (the literal 1036831949 = 0x3DCCCCCD, float32 0.1).
-MAX_ELASTICITY: float = float32(0.1)
+MAX_ELASTICITY: float = f32(0.1)
 
 #: ``SLEDDING_PS`` friction on steep fast slides (calc_friction, acclient.c:316090).
-SLEDDING_FRICTION: float = float32(0.2)
+SLEDDING_FRICTION: float = f32(0.2)
 
 #: ``SLEDDING_PS``: below this squared speed the friction factor is 1.0, a full stop (1.25 m/s).
 SLEDDING_STOP_SPEED2: float = 1.5625

@@ -70,7 +70,6 @@ from acphys.constants import (
     SLEDDING_STEEP_Z,
     SLEDDING_STOP_SPEED2,
     SMALL_VELOCITY,
-    float32,
 )
 from acphys.flags import (
     DEFAULT_PHYSICS_STATE,
@@ -86,6 +85,7 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3, zero_vector
 from acphys.part_array import PartArray
+from acphys.precision import f32
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.transition import Transition
 from acphys.world.obj_cell import ObjCell, ShadowObj
@@ -249,7 +249,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         float32, as ``UpdateObjectInternal(float quantum)`` does in retail.
         """
         self.world.physics_time += quantum
-        step = float32(quantum)
+        step = f32(quantum)
         self.update_object_internal(step)
         if self.observer is not None:
             self.observer(self, step)

@@ -233,7 +233,7 @@ class TestCarried:
         world.cur_time = 0.2
         mover.update_object()
         if held:
-            # The whole float32 quantum's move: 94 + 30 · float32(0.2).
+            # The whole float32 quantum's move: 94 + 30 · f32(0.2).
             assert mover.position.frame.origin.x == pytest.approx(94.0 + 30.0 * 0.20000000298023224, abs=1e-9)
         else:
             # The same body standing free blocks the mover short of it.

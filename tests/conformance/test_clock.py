@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from acphys.constants import MIN_QUANTUM, float32
+from acphys.constants import MIN_QUANTUM
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransientState as TS
 from acphys.math.cell_id import outdoor_cell_id
@@ -13,6 +13,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.simulation import Physics, Simulation, driver_tick_seconds, object_table_bucket
 from support import LANDBLOCK, human_setup, place
 
@@ -55,7 +56,7 @@ class TestTimeSlicing:
         seen = _quanta(body)
         world.cur_time = elapsed
         body.update_object()
-        assert seen == pytest.approx([float32(step) for step in steps], abs=1e-12)
+        assert seen == pytest.approx([f32(step) for step in steps], abs=1e-12)
         assert body.update_time == pytest.approx(update_time, abs=1e-12)
 
     def test_the_physics_timer_advances_with_each_slice(self, world):
@@ -74,7 +75,7 @@ class TestTimeSlicing:
         body.update_object()
         world.cur_time = 0.25
         body.update_object()
-        assert seen == pytest.approx([float32(0.2), float32(0.05)], abs=1e-12)
+        assert seen == pytest.approx([f32(0.2), f32(0.05)], abs=1e-12)
 
     def test_a_dropped_interval_moves_nothing(self, world):
         body = place(world, state=PS(0))
@@ -191,7 +192,7 @@ class TestUseTime:
         assert seen == []
         world.cur_time = MIN_QUANTUM
         assert physics.use_time() is True
-        assert seen == [float32(MIN_QUANTUM)]
+        assert seen == [f32(MIN_QUANTUM)]
         assert physics.last_update == MIN_QUANTUM
 
     def test_a_clock_that_goes_backwards_resyncs(self, world):

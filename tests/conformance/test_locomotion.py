@@ -20,7 +20,6 @@ import math
 
 import pytest
 
-from acphys.constants import float32
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransientState as TS
 from acphys.math.cell_id import outdoor_cell_id
@@ -31,6 +30,7 @@ from acphys.motion import commands as cmd
 from acphys.motion.animation import Animation, AnimData, AnimFrame
 from acphys.motion.motion_table import DEFAULT_SUBSTATE_ONLY, MotionData, MotionTable, cycle_key
 from acphys.motion.movement import HoldKey, MovementParameters
+from acphys.precision import f32
 from acphys.scenario.motion_tables import builtin_motion_table
 from support import LANDBLOCK, place
 
@@ -102,13 +102,13 @@ class TestRootMotion:
         # Root motion never touches m_velocityVector; cached_velocity is the displacement over the
         # (float32) quantum (UpdateObjectInternal, acclient.c:322718).
         assert body.velocity.exactly_equals(Vector3())
-        assert body.cached_velocity.y == pytest.approx((4.0 / 30.0) / float32(0.05), abs=1e-9)
+        assert body.cached_velocity.y == pytest.approx((4.0 / 30.0) / f32(0.05), abs=1e-9)
 
     def test_one_second_of_running_is_four_metres(self, ground):
         body = _walker(ground)
         body.do_motion(cmd.RUN_FORWARD, _params())
         _advance(ground, body, 1.0)
-        # 20 quanta of float32(0.05): frame_number reaches 30.0000004, so 29 in-cycle boundaries plus
+        # 20 quanta of f32(0.05): frame_number reaches 30.0000004, so 29 in-cycle boundaries plus
         # the wrap's entry frame (advance_to_next_animation, acclient.c:340472): 30 × 4/30.
         assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0, abs=1e-9)
         assert body.velocity.exactly_equals(Vector3())
@@ -201,7 +201,7 @@ class TestWalking:
         state = body.get_minterp().interpreted_state
         # adjust_motion: WalkBackwards -> WalkForward × -0.64999998 (acclient.c:343745).
         assert state.forward_command == cmd.WALK_FORWARD
-        assert state.forward_speed == float32(-0.64999998)
+        assert state.forward_speed == f32(-0.64999998)
         # add_motion scales the cycle by the speed (acclient.c:337430): framerate 30 × -0.65 = -19.5 and
         # velocity 3.12 × -0.65. Backwards from frame 29.9998, the first quantum (-0.975 frames) stays
         # inside frame 29: no boundary, no motion.
@@ -245,7 +245,7 @@ class TestLinksAndCompletion:
         _advance(ground, body, 0.1)
         # frame_number 3.0: still in the link (high frame 3); the sequence velocity applies throughout.
         assert body.motions_pending()
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(3 * float32(3.12) / 30.0, abs=1e-6)
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(3 * f32(3.12) / 30.0, abs=1e-6)
         _advance(ground, body, 0.05)
         # 4.5 overruns the link: AnimDone fires, the manager completes WalkForward, apricot drops the link.
         assert not body.motions_pending()

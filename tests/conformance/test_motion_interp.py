@@ -12,7 +12,6 @@ import math
 
 import pytest
 
-from acphys.constants import float32
 from acphys.flags import PhysicsState, TransientState
 from acphys.math.vector import Vector3
 from acphys.motion.animation import Animation, AnimData, AnimFrame
@@ -46,6 +45,7 @@ from acphys.motion.motion_table import MotionData, MotionTable, cycle_key
 from acphys.motion.movement import HoldKey, MovementError, MovementFlags, MovementParameters
 from acphys.motion.weenie import Weenie, get_jump_height, get_run_rate, jump_stamina_cost, load_mod
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.world.world import World
 from support import place
 
@@ -94,7 +94,7 @@ def table_state(body: PhysicsObj):  # the motion table manager's MotionState
     return body.part_array.motion_table_manager.state
 
 
-F32_WALK = float32(3.1199999)
+F32_WALK = f32(3.1199999)
 
 
 # -- get_state_velocity ------------------------------------------------------------------------
@@ -157,27 +157,27 @@ class TestStateVelocity:
 class TestAdjustMotion:
     def test_turn_left_becomes_turn_right_negated(self, world: World) -> None:
         # (acclient.c:343764-343767)
-        assert interp(world).adjust_motion(TURN_LEFT, 0.8, HoldKey.NONE) == (TURN_RIGHT, float32(-0.8))
+        assert interp(world).adjust_motion(TURN_LEFT, 0.8, HoldKey.NONE) == (TURN_RIGHT, f32(-0.8))
 
     def test_walk_backwards_is_walk_forward_times_minus_0_65(self, world: World) -> None:
         motion, speed = interp(world).adjust_motion(WALK_BACKWARDS, 1.0, HoldKey.NONE)
         # v7 = -0.64999998 (acclient.c:343776-343777)
         assert motion == WALK_FORWARD
-        assert speed == float32(-0.64999998)
+        assert speed == f32(-0.64999998)
 
     def test_sidestep_left_becomes_right_negated_and_scaled(self, world: World) -> None:
         motion, speed = interp(world).adjust_motion(SIDE_STEP_LEFT, 1.0, HoldKey.NONE)
         # negate, then x 3.1199999 / 1.25 * 0.5 (acclient.c:343789-343793, 343786)
         assert motion == SIDE_STEP_RIGHT
-        assert speed == -float32(F32_WALK / 1.25 * 0.5)
+        assert speed == -f32(F32_WALK / 1.25 * 0.5)
 
     def test_sidestep_factor_is_the_float32_retail_value(self, world: World) -> None:
         _, speed = interp(world).adjust_motion(SIDE_STEP_RIGHT, 1.0, HoldKey.NONE)
         # 3.1199999f / 1.25 * 0.5 stored to a float (acclient.c:343786): 1.2479999 (0x3F9FBE76),
-        # not float32(1.248) = 1.2480000 (0x3F9FBE77).
+        # not f32(1.248) = 1.2480000 (0x3F9FBE77).
         assert pytest.approx(1.248, abs=1e-7) == SIDESTEP_FACTOR
         assert speed == 1.247999906539917
-        assert speed != float32(1.248)
+        assert speed != f32(1.248)
 
     def test_run_forward_is_returned_untouched(self, world: World) -> None:
         # RunForward returns before the hold key is looked at (acclient.c:343772-343773)
@@ -329,8 +329,8 @@ class TestJumpVelocity:
         m.jump_extent = 1.5
         # extent -> 1.0 (acclient.c:343353-343354); h = (200/1500 * 22.200001 + 0.050000001) * 1
         # (acclient.c:713823); v_z = sqrt(h * 19.6) (acclient.c:443843)
-        h = 200.0 / 1500.0 * float32(22.200001) + float32(0.050000001)
-        assert m.get_jump_v_z() == float32(math.sqrt(h * 19.6))
+        h = 200.0 / 1500.0 * f32(22.200001) + f32(0.050000001)
+        assert m.get_jump_v_z() == f32(math.sqrt(h * 19.6))
 
     def test_weenie_that_cannot_say_gives_zero(self, world: World) -> None:
         m = interp(world, weenie=Weenie(the_player=False))
@@ -460,7 +460,7 @@ class TestDoMotion:
         assert m.raw_state.forward_holdkey == HoldKey.INVALID
         # interpreted holds the canonical form (acclient.c:344638, 344656, 332771-332774)
         assert m.interpreted_state.forward_command == WALK_FORWARD
-        assert m.interpreted_state.forward_speed == float32(-0.64999998)
+        assert m.interpreted_state.forward_speed == f32(-0.64999998)
         assert table_state(body).substate == WALK_FORWARD
         assert m.pending_motions[-1].motion == WALK_FORWARD
 
@@ -729,7 +729,7 @@ class TestWeenie:
 
     def test_jump_height_floor_and_power_clamp(self) -> None:
         # max(..., 0.34999999) and power in [0, 1] (acclient.c:713812-713825)
-        assert get_jump_height(0.0, 100, 0.0) == float32(0.34999999)
+        assert get_jump_height(0.0, 100, 0.0) == f32(0.34999999)
         assert get_jump_height(0.0, 100, 2.0) == get_jump_height(0.0, 100, 1.0)
 
     def test_stamina_cost(self) -> None:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 
-from acphys.constants import float32
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransientState as TS
 from acphys.geometry.bsp_builder import build_box_tree
@@ -25,6 +24,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3 as V
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.setup import Setup, human_setup
 from acphys.world.static_objects import add_static_object
 from acphys.world.world import World
@@ -57,9 +57,9 @@ def test_a_body_sunk_into_a_box_top_is_placed_on_a_ring_beside_it_not_lifted():
     # x at 92.96, still in.
     clear = math.sqrt(RADIUS**2 - 0.475**2)
     distance = 0.0
-    per_ring = float32(4.0 / 9)
+    per_ring = f32(4.0 / 9)
     for _ in range(4):
-        distance = float32(distance + per_ring)
+        distance = f32(distance + per_ring)
     heading = math.radians(255.0)
     expected_x = request.x + math.sin(heading) * distance
     expected_y = request.y + math.cos(heading) * distance

@@ -9,13 +9,13 @@ import itertools
 
 import pytest
 
-from acphys.constants import float32
 from acphys.managers.target import LongNIHash, TargetInfo, TargetManager, TargetStatus
 from acphys.math.vector import Vector3
 from acphys.motion.motion_table import MotionTable
 from acphys.motion.move_to import cylinder_distance
 from acphys.motion.movement import MovementParameters, MovementStruct, MovementType
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.world.world import World
 from support import LANDBLOCK, place
@@ -236,7 +236,7 @@ class TestVoyeurUpdates:
         # (acclient.c:316056). A 0.4-m prediction is within the 0.5 radius: no report.
         tracker, target = self.start(pair, 0.4)
         voyeur = next(iter(target.target_manager.voyeur_table))
-        assert voyeur.quantum == float32(0.4) != 0.4
+        assert voyeur.quantum == f32(0.4) != 0.4
         assert tracker.get_target_quantum() == 0.4  # the tracker's own copy is not narrowed
         assert voyeur.last_sent_position.frame.origin.x == 96.0
 
@@ -245,13 +245,13 @@ class TestVoyeurUpdates:
         # 0.6 m > 0.5 -> SendVoyeurUpdate Ok with that position (acclient.c:328175-328176).
         tracker, target = self.start(pair, 0.6)
         info = tracker.target_manager.target_info
-        assert info.interpolated_position.frame.origin.x == 96.0 + float32(0.6)
+        assert info.interpolated_position.frame.origin.x == 96.0 + f32(0.6)
         assert info.target_position.frame.origin.x == 96.0
         assert info.velocity.exactly_equals(Vector3(1.0, 0.0, 0.0))
         # The report carries the voyeur's (narrowed) quantum, which ReceiveUpdate copies (acclient.c:328413).
-        assert info.quantum == float32(0.6)
+        assert info.quantum == f32(0.6)
         voyeur = next(iter(target.target_manager.voyeur_table))
-        assert voyeur.last_sent_position.frame.origin.x == 96.0 + float32(0.6)
+        assert voyeur.last_sent_position.frame.origin.x == 96.0 + f32(0.6)
 
     def test_prediction_exactly_at_the_radius_is_not_sent(self, pair: tuple[PhysicsObj, PhysicsObj]) -> None:
         # distance > radius is strict (acclient.c:328175): 0.5 m is not sent.

@@ -12,9 +12,9 @@ import random
 
 import pytest
 
-from acphys.constants import float32
 from acphys.geometry.polygon import Polygon, SidesType
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.world.terrain import (
     ENTIRELY_WATER_DEPTH,
     TERRAIN_SURF_CHAR,
@@ -98,7 +98,7 @@ def test_split_property_against_independent_int32() -> None:
 
 def test_cut_threshold_is_the_top_bit_ace_diverges() -> None:
     # acclient.c:354050: (double)(u32)h * 2.3283064e-10 >= 0.5; the literal is float32 2^-32
-    assert float32(2.3283064e-10) == 2.0**-32
+    assert f32(2.3283064e-10) == 2.0**-32
     assert cut_from_hash(0x7FFFFFFF) is False
     assert cut_from_hash(0x80000000) is True
     # ACE tests h * 2.3283064e-10 < 0.5 with a float64 literal just below 2^-32: it leaves
@@ -265,13 +265,13 @@ def test_water_depth_none_partial_full() -> None:
     assert lb.get_water_depth(0xA9B40001, Vector3(5.0, 5.0, 0.0)) == 0.0
     # ENTIRELY_WATER cell: 0.89999998 (acclient.c:347247)
     full = 0xA9B40000 | (1 + 8 * 2 + 5)
-    assert lb.get_water_depth(full, Vector3(60.0, 130.0, 0.0)) == ENTIRELY_WATER_DEPTH == float32(0.9)
+    assert lb.get_water_depth(full, Vector3(60.0, 130.0, 0.0)) == ENTIRELY_WATER_DEPTH == f32(0.9)
     # PARTIALLY cell (6, 0): nearest corner decides (acclient.c:353679-353707)
     part = 0xA9B40000 | (1 + 8 * 6)
-    assert lb.get_water_depth(part, Vector3(145.0, 3.0, 0.0)) == float32(0.45)  # SW corner is water
-    assert lb.get_water_depth(part, Vector3(160.0, 3.0, 0.0)) == float32(0.1)  # SE corner is solid
-    assert lb.get_water_depth(part, Vector3(145.0, 20.0, 0.0)) == float32(0.1)  # NW corner is solid
-    assert lb.calc_water_depth(part, Vector3(145.0, 3.0, 0.0)) == float32(0.44999999)
+    assert lb.get_water_depth(part, Vector3(145.0, 3.0, 0.0)) == f32(0.45)  # SW corner is water
+    assert lb.get_water_depth(part, Vector3(160.0, 3.0, 0.0)) == f32(0.1)  # SE corner is solid
+    assert lb.get_water_depth(part, Vector3(145.0, 20.0, 0.0)) == f32(0.1)  # NW corner is solid
+    assert lb.calc_water_depth(part, Vector3(145.0, 3.0, 0.0)) == f32(0.44999999)
 
 
 def test_centre_lines_take_west_and_south_ace_diverges() -> None:
@@ -282,10 +282,10 @@ def test_centre_lines_take_west_and_south_ace_diverges() -> None:
     # acclient.c:352030 (2x+1)*12 >= vc.x -> west; the y branch with c0|c3 (equal included) -> south
     assert lb.get_terrain(part, on_both) == 16
     assert lb.find_terrain(part, on_both) == SurfChar.WATER
-    assert lb.calc_water_depth(part, on_both) == float32(0.45)
+    assert lb.calc_water_depth(part, on_both) == f32(0.45)
     # ACE: 156 % 24 = 12 >= 12 -> east; it would read vertex (7, 1) and answer 0.1.
-    assert lb.calc_water_depth(part, Vector3(156.001, 12.0, 0.0)) == float32(0.1)
-    assert lb.calc_water_depth(part, Vector3(156.0, 12.001, 0.0)) == float32(0.1)
+    assert lb.calc_water_depth(part, Vector3(156.001, 12.0, 0.0)) == f32(0.1)
+    assert lb.calc_water_depth(part, Vector3(156.0, 12.001, 0.0)) == f32(0.1)
 
 
 def test_walkable_surface_type() -> None:

@@ -1,6 +1,6 @@
 """Ladder rung 7: a ball with elasticity 0.1 bounces and comes to rest; an inelastic missile stops dead.
 
-The expected values are worked out by hand from the retail steps (30 Hz, dt = float32(1/30)):
+The expected values are worked out by hand from the retail steps (30 Hz, dt = f32(1/30)):
 ``UpdatePhysicsInternal`` moves by ``v·dt + a·dt²/2`` only when v² > 0 and always adds ``a·dt``;
 ``handle_all_collisions`` reflects the normal velocity with ``(1 + e)``.
 """
@@ -13,10 +13,11 @@ from pathlib import Path
 import pytest
 
 import acphys
-from acphys.constants import GRAVITY, float32
+from acphys.constants import GRAVITY
 from acphys.flags import PhysicsState
+from acphys.precision import f32
 
-DT = float32(1.0 / 30.0)
+DT = f32(1.0 / 30.0)
 G = GRAVITY
 
 

@@ -1,6 +1,6 @@
 """Ladder rung 8: missiles hit a pillar (cylsphere) and a sphere object; each collision is reported once.
 
-The arrows fly east at 12 m/s: 12·dt = 0.40000002 m a step (dt = float32(1/30)), which
+The arrows fly east at 12 m/s: 12·dt = 0.40000002 m a step (dt = f32(1/30)), which
 ``CTransition::calc_num_steps`` (acclient.c:311763) cuts into ceil(4.0000002) = 5 sub-steps of
 0.08 m, one more than the nominal 0.4/0.1 because dt is float32.
 """
@@ -10,11 +10,11 @@ from __future__ import annotations
 import pytest
 
 import acphys
-from acphys.constants import float32
 from acphys.flags import PhysicsState
 from acphys.physics_obj import CollisionKind, CollisionReport, PhysicsObj
+from acphys.precision import f32
 
-DT = float32(1.0 / 30.0)
+DT = f32(1.0 / 30.0)
 SPEED = 12.0
 
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import pytest
 
-from acphys.constants import float32
 from acphys.motion import commands
 from acphys.motion.movement import (
     FLT_MAX,
@@ -12,6 +11,7 @@ from acphys.motion.movement import (
     MovementFlags,
     MovementParameters,
 )
+from acphys.precision import f32
 
 
 class TestCommandTable:
@@ -70,10 +70,10 @@ class TestMovementParameters:
         # MovementParameters::MovementParameters, acclient.c:339436-339458.
         params = MovementParameters()
         assert params.min_distance == 0.0
-        assert params.distance_to_object == float32(0.6)  # LODWORD 1058642330 = 0x3F19999A
+        assert params.distance_to_object == f32(0.6)  # LODWORD 1058642330 = 0x3F19999A
         assert params.distance_to_object != 0.6
         assert params.fail_distance == FLT_MAX  # LODWORD 2139095039 = 0x7F7FFFFF
-        assert params.fail_distance == float32(FLT_MAX)
+        assert params.fail_distance == f32(FLT_MAX)
         assert params.desired_heading == 0.0
         assert params.speed == 1.0  # 1065353216 = 0x3F800000
         assert params.walk_run_threshhold == 15.0  # 1097859072 = 0x41700000

@@ -26,7 +26,8 @@ Q_Z90 = (C45, 0.0, 0.0, S45)  # +90° about z
 Q_X90 = (C45, S45, 0.0, 0.0)  # +90° about x
 Q_CYCLE = (0.5, 0.5, 0.5, 0.5)  # +120° about (1,1,1)/√3: x→y→z→x
 
-TOL = 1e-12
+#: float32 storage (acphys.precision): algebra holds to a few float32 ulps, not to double precision.
+TOL = 1e-6
 
 
 # -- independent quaternion algebra (plain math, not the code under test) ----------------------

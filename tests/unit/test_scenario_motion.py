@@ -10,11 +10,11 @@ from pathlib import Path
 import pytest
 
 import acphys
-from acphys.constants import float32
 from acphys.motion import commands as cmd
 from acphys.motion.anim_hooks import AnimHookDir, EtherealHook, SoundHook
 from acphys.motion.interp import RUN_ANIM_SPEED, SIDESTEP_ANIM_SPEED, WALK_ANIM_SPEED
 from acphys.motion.motion_table import DEFAULT_SUBSTATE_ONLY, cycle_key
+from acphys.precision import f32
 from acphys.scenario import ScenarioError, parse_scenario
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables
 
@@ -97,7 +97,7 @@ class TestMotionTableFromAScenario:
         table = _table(parse_scenario(RUNNER))
         turn = table.cycles[cycle_key(cmd.NON_COMBAT, cmd.TURN_RIGHT)]
         assert turn.bitfield == DEFAULT_SUBSTATE_ONLY
-        assert turn.omega.z == float32(math.radians(-90.0))
+        assert turn.omega.z == f32(math.radians(-90.0))
         run = table.cycles[cycle_key(cmd.NON_COMBAT, cmd.RUN_FORWARD)]
         assert run.velocity.y == 4.0
         assert run.anims[0].framerate == 30.0

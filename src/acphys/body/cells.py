@@ -6,13 +6,13 @@ import enum
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from acphys.constants import float32
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState, member_namespace
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.cell_id import adjust_to_outside, is_outdoor
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.transition import Transition
 from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
 
@@ -47,7 +47,7 @@ def _find_visible_child_cell(
 
 #: ``CheckPositionInternal``: how far (signed, in x and in y) a placement without SLIDE may move
 #: the body (acclient.c:319180-319181).
-PLACEMENT_TOLERANCE = float32(0.050000001)
+PLACEMENT_TOLERANCE = f32(0.050000001)
 
 
 class SetPositionFlags(enum.IntFlag):

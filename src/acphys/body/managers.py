@@ -5,10 +5,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from acphys.attachments import PositionManager, TargetManager
-from acphys.constants import float32
 from acphys.flags import PhysicsState, TransientState
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.managers.detection import DetectionInfo
@@ -81,7 +81,7 @@ class ManagerRequests:
 
         Retail: CPhysicsObj::add_voyeur @ 0x0050EE00 (acclient.c:316056)
         """
-        self._make_target_manager().add_voyeur(object_id, radius, float32(quantum))
+        self._make_target_manager().add_voyeur(object_id, radius, f32(quantum))
 
     def remove_voyeur(self, object_id: int) -> bool:
         """Retail: CPhysicsObj::remove_voyeur @ 0x0050EE50 (acclient.c:316076)"""

@@ -38,10 +38,10 @@ import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from acphys.constants import float32
 from acphys.geometry.sphere import Sphere
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.world.obj_cell import CellArray, ObjCell
 
 if TYPE_CHECKING:
@@ -154,7 +154,7 @@ class DetectionManager:
             raise ValueError(f"detection radius must be finite and >= 0, got {radius}")
         if not 0 <= object_id <= 0xFFFFFFFF:
             raise ValueError(f"detection object id must be a 32-bit id, got {object_id:#x}")
-        detcyl = DetectionCylsphere(context_id, float32(radius), object_id, detection_type)
+        detcyl = DetectionCylsphere(context_id, f32(radius), object_id, detection_type)
         self.detection_table[context_id] = detcyl
         return detcyl
 
@@ -220,7 +220,7 @@ class DetectionManager:
 
         Retail: DetectionManager::CheckDetection @ 0x005196D0 (acclient.c:327020)
         """
-        distance = float32(self.physobj.position.get_offset(obj.position).length())
+        distance = f32(self.physobj.position.get_offset(obj.position).length())
         if obj.get_radius() + detcyl.radius <= distance:
             if detcyl.object_detected:
                 detcyl.object_detected = False

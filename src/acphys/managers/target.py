@@ -23,9 +23,9 @@ import enum
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Generic, TypeVar
 
-from acphys.constants import float32
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -353,7 +353,7 @@ class TargetManager:
         Retail: TargetManager::GetInterpolatedPosition @ 0x0051A5E0 (acclient.c:328130)
         """
         p = self.physobj.position.copy()
-        p.frame.origin = p.frame.origin + self.physobj.get_velocity() * float32(quantum)
+        p.frame.origin = p.frame.origin + self.physobj.get_velocity() * f32(quantum)
         return p
 
     def check_and_update_voyeur(self, voyeur: TargettedVoyeurInfo) -> None:

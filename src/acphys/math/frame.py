@@ -10,6 +10,13 @@ Conventions, all retail's:
   :meth:`Frame.set_rotate` calls). Code that writes the quaternion directly
   must cache before anything reads the matrix, exactly as in retail.
 * Headings are compass degrees: 0 faces +y (north), 90 faces +x (east).
+* Every stored number is a float32 (retail's fields are ``float``): the origin
+  is a :class:`Vector3`, ``set_rotate`` narrows its arguments and the
+  quaternion it stores, ``cache`` narrows the matrix. The methods narrow
+  their locals where the decompilation stores a ``float`` (see
+  :mod:`acphys.precision`).
+* The decompiler prints double literals with 16 significant digits:
+  ``0.0174532925199433`` is π/180 and ``57.29577951308232`` is 180/π.
 """
 
 from __future__ import annotations
@@ -18,11 +25,15 @@ import math
 
 from acphys.constants import EPSILON
 from acphys.math.vector import Vector3, compass_heading, zero_vector
+from acphys.precision import f32, pack3, pack4, pack9, unpack3, unpack4, unpack9
 
 _new = object.__new__
 _isnan = math.isnan
 #: ``Frame::IsValid``'s tolerance on the quaternion's squared norm.
 _NORM_TOLERANCE = EPSILON * 5.0
+#: The degrees-radians factors retail multiplies by (``math.radians`` and ``math.degrees`` use the same).
+_RAD_PER_DEG = math.pi / 180.0
+_DEG_PER_RAD = 180.0 / math.pi
 #: ``m`` for the identity quaternion (1, +0, +0, +0), as :meth:`Frame.cache` computes it.
 _IDENTITY_M = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
 #: The default quaternion components, as objects: ``Frame()`` recognises an untouched
@@ -51,10 +62,7 @@ class Frame:
             self.qx = self.qy = self.qz = 0.0
             self.m = _IDENTITY_M.copy()  # what cache() gives for (1, +0, +0, +0)
         else:
-            self.qw = float(qw)
-            self.qx = float(qx)
-            self.qy = float(qy)
-            self.qz = float(qz)
+            self.qw, self.qx, self.qy, self.qz = unpack4(pack4(qw, qx, qy, qz))
             self.m = [0.0] * 9
             self.cache()
 
@@ -102,21 +110,26 @@ class Frame:
         wx, wy, wz = qw * x2, qw * y2, qw * z2
         xx, xy, xz = qx * x2, qx * y2, qx * z2
         yy, yz, zz = qy * y2, qy * z2, qz * z2
-        m = self.m
-        m[0] = 1.0 - yy - zz
-        m[1] = xy + wz
-        m[2] = xz - wy
-        m[3] = xy - wz
-        m[4] = 1.0 - xx - zz
-        m[5] = yz + wx
-        m[6] = xz + wy
-        m[7] = yz - wx
-        m[8] = 1.0 - xx - yy
+        self.m[:] = unpack9(
+            pack9(
+                1.0 - yy - zz,
+                xy + wz,
+                xz - wy,
+                xy - wz,
+                1.0 - xx - zz,
+                yz + wx,
+                xz + wy,
+                yz - wx,
+                1.0 - xx - yy,
+            )
+        )
 
     # -- validity --------------------------------------------------------------------------
 
     def is_valid(self) -> bool:
         """No NaN anywhere and a quaternion norm within 5 × EPSILON of 1.
+
+        The squared norm is a ``float`` local, summed z first.
 
         Retail: Frame::IsValid @ 0x00534ED0 (acclient.c:357024)
         """
@@ -124,7 +137,7 @@ class Frame:
         qw, qx, qy, qz = self.qw, self.qx, self.qy, self.qz
         if _isnan(o.x) or _isnan(o.y) or _isnan(o.z) or _isnan(qw) or _isnan(qx) or _isnan(qy) or _isnan(qz):
             return False
-        norm = qw * qw + qx * qx + qy * qy + qz * qz
+        norm = f32(qz * qz + qy * qy + qx * qx + qw * qw)
         return not (_isnan(norm) or abs(norm - 1.0) > _NORM_TOLERANCE)
 
     def is_equal(self, other: Frame) -> bool:
@@ -158,16 +171,19 @@ class Frame:
     def set_rotate(self, qw: float, qx: float, qy: float, qz: float) -> None:
         """Normalise and store a quaternion; if the frame is then invalid, restore the old one.
 
-        On success the matrix is re-cached; on failure neither the quaternion
-        nor the matrix changes (note that a NaN origin also makes the frame
+        The arguments are ``float`` parameters (narrowed at the call), the
+        reciprocal norm stays double, the stored quaternion is narrowed. On
+        success the matrix is re-cached; on failure neither the quaternion nor
+        the matrix changes (note that a NaN origin also makes the frame
         invalid, so a frame with a NaN origin keeps its rotation).
 
         Retail: Frame::set_rotate @ 0x00535080 (acclient.c:357062)
         """
         old = (self.qw, self.qx, self.qy, self.qz)
+        qw, qx, qy, qz = unpack4(pack4(qw, qx, qy, qz))
         norm2 = qw * qw + qx * qx + qy * qy + qz * qz
         inv = 1.0 / math.sqrt(norm2) if norm2 > 0.0 else math.nan
-        self.qw, self.qx, self.qy, self.qz = qw * inv, qx * inv, qy * inv, qz * inv
+        self.qw, self.qx, self.qy, self.qz = unpack4(pack4(qw * inv, qx * inv, qy * inv, inv * qz))
         if self.is_valid():
             self.cache()
         else:
@@ -176,7 +192,9 @@ class Frame:
     def grotate(self, w: Vector3) -> None:
         """Rotate by the global axis-angle vector ``w`` (radians); ignored when |w| < EPSILON.
 
-        The rotation ``(cos θ/2, sin θ/2 · ŵ)`` multiplies the quaternion from the left.
+        The rotation ``(cos θ/2, sin θ/2 · ŵ)`` multiplies the quaternion from the left. The
+        reciprocal angle, the cosine and the first two axis terms are ``float`` locals; the
+        sine and the third term stay double (acclient.c:357433-357440).
 
         Retail: Frame::grotate @ 0x005357A0 (acclient.c:357421)
         """
@@ -184,10 +202,12 @@ class Frame:
         if theta2 < EPSILON * EPSILON:
             return
         theta = math.sqrt(theta2)
-        inv = 1.0 / theta
+        inv = f32(1.0 / theta)
         s = math.sin(theta * 0.5)
-        c = math.cos(theta * 0.5)
-        f, g, h = s * w.x * inv, s * w.y * inv, s * w.z * inv
+        c = f32(math.cos(theta * 0.5))
+        f = f32(s * w.x * inv)
+        g = f32(inv * s * w.y)
+        h = s * inv * w.z
         qw, qx, qy, qz = self.qw, self.qx, self.qy, self.qz
         self.set_rotate(
             c * qw - f * qx - g * qy - h * qz,
@@ -207,11 +227,13 @@ class Frame:
         """Slerp from ``start`` to ``end`` by ``t`` along the shorter arc.
 
         Falls back to a linear blend when the rotations are within EPSILON
-        of each other or when a slerp weight leaves [0, 1].
+        of each other or when a slerp weight leaves [0, 1]. ``t`` is a ``float``
+        parameter; the cosine and the weights stay double.
 
         Retail: Frame::interpolate_rotation @ 0x00535390 (acclient.c:357257)
         """
-        cosom = start.qx * end.qx + start.qy * end.qy + start.qz * end.qz + start.qw * end.qw
+        t = f32(t)
+        cosom = start.qy * end.qy + start.qw * end.qw + start.qx * end.qx + start.qz * end.qz
         to = (end.qw, end.qx, end.qy, end.qz)
         if cosom < 0.0:
             cosom = -cosom
@@ -235,12 +257,17 @@ class Frame:
     def interpolate_origin(self, start: Frame, end: Frame, t: float) -> None:
         """Blend the origins: ``(1 - t) · start + t · end``.
 
+        ``t`` is a ``float`` parameter; every product but ``t · end.x`` is spilled to a
+        ``float`` (acclient.c:357242-357255).
+
         Retail: Frame::interpolate_origin @ 0x005352F0 (acclient.c:357228)
         """
+        t = f32(t)
         u = 1.0 - t
-        self.origin.x = t * end.origin.x + u * start.origin.x
-        self.origin.y = u * start.origin.y + t * end.origin.y
-        self.origin.z = u * start.origin.z + t * end.origin.z
+        ty, tz = f32(t * end.origin.y), f32(t * end.origin.z)
+        ux, uy, uz = unpack3(pack3(u * start.origin.x, u * start.origin.y, u * start.origin.z))
+        o = self.origin
+        o.x, o.y, o.z = unpack3(pack3(t * end.origin.x + ux, uy + ty, uz + tz))
 
     # -- composition -----------------------------------------------------------------------
 
@@ -259,7 +286,8 @@ class Frame:
         z = m[8] * o.z + m[2] * o.x + m[5] * o.y + f1.origin.z
         w1, x1, y1, z1 = f1.qw, f1.qx, f1.qy, f1.qz
         w2, x2, y2, z2 = f2.qw, f2.qx, f2.qy, f2.qz
-        self.origin.x, self.origin.y, self.origin.z = x, y, z
+        so = self.origin
+        so.x, so.y, so.z = unpack3(pack3(x, y, z))
         self.set_rotate(
             w1 * w2 - x2 * x1 - y2 * y1 - z2 * z1,
             w1 * x2 + z2 * y1 + w2 * x1 - y2 * z1,
@@ -270,7 +298,9 @@ class Frame:
     def subtract1(self, f1: Frame, f2: Frame) -> None:
         """Set this frame to X with ``X ∘ f2 = f1`` (undo a local offset f2 from f1).
 
-        ``q = q1 · conj(q2)``, then ``origin = f1.origin - m_X · f2.origin``.
+        ``q = q1 · conj(q2)``, then ``origin = f1.origin - m_X · f2.origin``; the rotated
+        offset's x and y are spilled to ``float`` before f1's origin is added, its z is not
+        (acclient.c:357345-357357).
 
         Retail: Frame::subtract1 @ 0x00535520 (acclient.c:357321)
         """
@@ -285,9 +315,11 @@ class Frame:
             z1 * w2 - (w1 * z2 + y2 * x1) + y1 * x2,
         )
         m = self.m
-        self.origin.x = oz * m[6] + ox * m[0] + oy * m[3] + base.x
-        self.origin.y = oz * m[7] + ox * m[1] + oy * m[4] + base.y
-        self.origin.z = oz * m[8] + ox * m[2] + oy * m[5] + base.z
+        rx = f32(oz * m[6] + ox * m[0] + oy * m[3])
+        ry = f32(oz * m[7] + ox * m[1] + oy * m[4])
+        rz = oz * m[8] + ox * m[2] + oy * m[5]
+        o = self.origin
+        o.x, o.y, o.z = unpack3(pack3(rx + base.x, ry + base.y, rz + base.z))
 
     def subtract2(self, f1: Frame, f2: Frame) -> None:
         """Set this frame to X with ``f2 ∘ X = f1`` (f1 expressed in f2's space).
@@ -316,9 +348,13 @@ class Frame:
         """
         m = self.m
         r = _new(Vector3)
-        r.x = m[6] * v.z + m[0] * v.x + m[3] * v.y
-        r.y = m[7] * v.z + m[1] * v.x + m[4] * v.y
-        r.z = m[8] * v.z + m[2] * v.x + m[5] * v.y
+        r.x, r.y, r.z = unpack3(
+            pack3(
+                m[6] * v.z + m[0] * v.x + m[3] * v.y,
+                m[7] * v.z + m[1] * v.x + m[4] * v.y,
+                m[8] * v.z + m[2] * v.x + m[5] * v.y,
+            )
+        )
         return r
 
     def globaltolocalvec(self, v: Vector3) -> Vector3:
@@ -342,70 +378,98 @@ class Frame:
         m = self.m
         o = self.origin
         v = _new(Vector3)
-        v.x = m[6] * p.z + m[0] * p.x + m[3] * p.y + o.x
-        v.y = m[7] * p.z + m[1] * p.x + m[4] * p.y + o.y
-        v.z = m[8] * p.z + m[2] * p.x + m[5] * p.y + o.z
+        v.x, v.y, v.z = unpack3(
+            pack3(
+                m[6] * p.z + m[0] * p.x + m[3] * p.y + o.x,
+                m[7] * p.z + m[1] * p.x + m[4] * p.y + o.y,
+                m[8] * p.z + m[2] * p.x + m[5] * p.y + o.z,
+            )
+        )
         return v
 
     def globaltolocal(self, p: Vector3) -> Vector3:
         """Take a global point to local space.
 
+        The offset from the origin is spilled to ``float``, except that the local z
+        row uses the unspilled z difference (acclient.c:143727-143733).
+
         Retail: Frame::globaltolocal @ 0x00452680 (acclient.c:143717)
         """
-        return self.globaltolocalvec(p - self.origin)
+        m = self.m
+        o = self.origin
+        dx, dy, dz32 = unpack3(pack3(p.x - o.x, p.y - o.y, p.z - o.z))
+        dz = p.z - o.z
+        return Vector3(
+            dz32 * m[2] + dx * m[0] + dy * m[1],
+            dz32 * m[5] + dx * m[3] + dy * m[4],
+            dz * m[8] + dx * m[6] + dy * m[7],
+        )
 
     # -- headings --------------------------------------------------------------------------
 
     def get_vector_heading(self) -> Vector3:
         """The local +y axis (the facing) in global coordinates.
 
+        Retail adds the other two columns times 0.0 (``localtoglobalvec`` of (0, 1, 0) inlined),
+        which only turns a -0.0 into +0.0; so does this.
+
         Retail: Frame::get_vector_heading @ 0x00535720 (acclient.c:357393)
         """
-        return Vector3(self.m[3], self.m[4], self.m[5])
+        m = self.m
+        return Vector3((m[6] + m[0]) * 0.0 + m[3], (m[7] + m[1]) * 0.0 + m[4], (m[8] + m[2]) * 0.0 + m[5])
 
     def get_heading(self) -> float:
         """The compass heading of the facing, in degrees [0, 360).
 
         Retail: Frame::get_heading @ 0x00535760 (acclient.c:357409)
         """
-        return compass_heading(self.m[3], self.m[4])
+        m = self.m
+        return compass_heading((m[6] + m[0]) * 0.0 + m[3], (m[7] + m[1]) * 0.0 + m[4])
 
     def set_vector_heading(self, heading: Vector3) -> None:
         """Face along ``heading``: yaw from its horizontal bearing, pitch from its z.
 
         Leaves the rotation untouched when ``heading`` is shorter than EPSILON.
-        The new rotation replaces the old one entirely (any roll is lost).
+        The new rotation replaces the old one entirely (any roll is lost). The yaw and the
+        pitch are ``float`` arguments; the pitch goes through degrees and back, as retail's does.
 
         Retail: Frame::set_vector_heading @ 0x00535DB0 (acclient.c:357667)
         """
         normal = heading.copy()
         if normal.normalize_check_small():
             return
-        yaw = -math.radians(compass_heading(normal.x, normal.y))
-        pitch = math.asin(normal.z)
+        yaw = -compass_heading(normal.x, normal.y) * _RAD_PER_DEG
+        pitch = math.asin(normal.z) * _DEG_PER_RAD * _RAD_PER_DEG
         self.euler_set_rotate(pitch, 0.0, yaw)
 
     def set_heading(self, degrees: float) -> None:
         """Face compass ``degrees``, keeping the facing's current z as the pitch input.
 
+        ``degrees`` is a ``float`` parameter; the direction is a ``Vector3``.
+
         Retail: Frame::set_heading @ 0x00535E40 (acclient.c:357691)
         """
-        rad = math.radians(degrees)
-        self.set_vector_heading(Vector3(math.sin(rad), math.cos(rad), self.m[5]))
+        rad = f32(degrees) * _RAD_PER_DEG
+        m = self.m
+        self.set_vector_heading(Vector3(math.sin(rad), math.cos(rad), (m[8] + m[2]) * 0.0 + m[5]))
 
     def euler_set_rotate(self, x: float, y: float, z: float) -> None:
         """Set the rotation from static-axis Euler angles applied x, then y, then z (radians).
 
         Retail always calls this with order 0 (Shoemake's ``EulOrdXYZs``:
         i=0, j=1, k=2, no repetition, even parity, static frame), the only
-        order ported here.
+        order ported here. The angles are ``float`` parameters; the half z angle, the
+        cosines, the x sine and the four products are ``float`` locals, the y and z sines
+        stay double (acclient.c:357620-357660).
 
         Retail: Frame::euler_set_rotate @ 0x00535BF0 (acclient.c:357588)
         """
-        ci, si = math.cos(x * 0.5), math.sin(x * 0.5)
-        cj, sj = math.cos(y * 0.5), math.sin(y * 0.5)
-        ch, sh = math.cos(z * 0.5), math.sin(z * 0.5)
-        cc, cs, sc, ss = ci * ch, ci * sh, si * ch, si * sh
+        x, y, z = unpack3(pack3(x, y, z))
+        half_z = f32(z * 0.5)
+        ci, si = f32(math.cos(x * 0.5)), f32(math.sin(x * 0.5))
+        cj, sj = f32(math.cos(y * 0.5)), math.sin(y * 0.5)
+        ch, sh = f32(math.cos(half_z)), math.sin(half_z)
+        cc, cs, sc, ss = unpack4(pack4(ch * ci, ci * sh, si * ch, sh * si))
         self.set_rotate(
             ss * sj + cc * cj,
             sc * cj - cs * sj,

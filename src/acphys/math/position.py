@@ -5,6 +5,7 @@ from __future__ import annotations
 from acphys.math.cell_id import format_cell_id, get_block_offset
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, unpack3
 
 _new = object.__new__
 
@@ -34,26 +35,54 @@ class Position:
     def get_offset(self, other: Position) -> Vector3:
         """The vector from this position's origin to ``other``'s, across landblocks.
 
+        ``other``'s y and z, moved into this landblock, are spilled to ``float``; its x is not
+        (acclient.c:311697-311703).
+
         Retail: Position::get_offset @ 0x00509F60 (acclient.c:311690)
         """
         block = get_block_offset(self.objcell_id, other.objcell_id)
-        return block + other.frame.origin - self.frame.origin
+        o, s = other.frame.origin, self.frame.origin
+        y, z = f32(block.y + o.y), f32(block.z + o.z)
+        v = _new(Vector3)
+        v.x, v.y, v.z = unpack3(pack3(block.x + o.x - s.x, y - s.y, z - s.z))
+        return v
 
     def localtoglobal_offset(self, other: Position, v: Vector3) -> Vector3:
         """The vector from this origin to the point ``v`` local to ``other``'s frame.
 
+        The point is taken to global summing its y term first; the global z, and x and z
+        moved into this landblock, are spilled to ``float`` (acclient.c:314684-314694).
+
         Retail: Position::get_offset @ 0x0050D920 (acclient.c:314676)
         """
         block = get_block_offset(self.objcell_id, other.objcell_id)
-        return block + other.frame.localtoglobal(v) - self.frame.origin
+        m, o, s = other.frame.m, other.frame.origin, self.frame.origin
+        gx = m[3] * v.y + m[0] * v.x + m[6] * v.z + o.x
+        gy = m[4] * v.y + m[1] * v.x + m[7] * v.z + o.y
+        gz = f32(m[5] * v.y + m[2] * v.x + m[8] * v.z + o.z)
+        x, z = f32(block.x + gx), f32(block.z + gz)
+        r = _new(Vector3)
+        r.x, r.y, r.z = unpack3(pack3(x - s.x, block.y + gy - s.y, z - s.z))
+        return r
 
     def localtolocal(self, other: Position, v: Vector3) -> Vector3:
         """The point ``v`` local to ``other``'s frame, expressed in this position's frame (across blocks).
 
+        The global point (summing its y term first) and its move into this landblock are
+        ``float`` stores (acclient.c:143803-143813).
+
         Retail: Position::localtolocal @ 0x004527F0 (acclient.c:143794)
         """
         block = get_block_offset(self.objcell_id, other.objcell_id)
-        return self.frame.globaltolocal(other.frame.localtoglobal(v) + block)
+        m, o = other.frame.m, other.frame.origin
+        gx, gy, gz = unpack3(
+            pack3(
+                m[3] * v.y + m[0] * v.x + m[6] * v.z + o.x,
+                m[4] * v.y + m[1] * v.x + m[7] * v.z + o.y,
+                m[5] * v.y + m[2] * v.x + m[8] * v.z + o.z,
+            )
+        )
+        return self.frame.globaltolocal(Vector3(block.x + gx, block.y + gy, block.z + gz))
 
     def determine_quadrant(self, height: float, p: Position) -> int:
         """Where ``p``'s origin lies around this position: 0x8 left / 0x10 right, 0x20 front /

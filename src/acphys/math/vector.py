@@ -6,26 +6,28 @@ import math
 from collections.abc import Iterator
 
 from acphys.constants import EPSILON
+from acphys.precision import pack3, unpack3
 
 #: ``object.__new__``: the operators below build their results with it and set the slots
-#: directly, skipping ``__init__``'s ``float()`` coercion (their components are floats
-#: already). Constructing vectors is the commonest thing a body step does.
+#: directly, skipping ``__init__``. Constructing vectors is the commonest thing a body step does.
 _new = object.__new__
 
 
 class Vector3:
-    """A mutable 3-vector of floats (retail ``AC1Legacy::Vector3``).
+    """A mutable 3-vector of float32 values (retail ``AC1Legacy::Vector3``: three ``float`` fields).
 
-    Arithmetic operators return new vectors; the retail in-place helpers
-    (:meth:`normalize_check_small`) mutate, as retail's do.
+    Every component is a float32 (see :mod:`acphys.precision`): the constructor
+    and the operators narrow what they store, as retail's operators write a
+    ``Vector3``; products and sums that return a scalar (:meth:`dot`,
+    :meth:`length_squared`) stay double. Code that assigns a component
+    directly narrows it first. Arithmetic operators return new vectors; the
+    retail in-place helpers (:meth:`normalize_check_small`) mutate, as retail's do.
     """
 
     __slots__ = ("x", "y", "z")
 
     def __init__(self, x: float = 0.0, y: float = 0.0, z: float = 0.0) -> None:
-        self.x = float(x)
-        self.y = float(y)
-        self.z = float(z)
+        self.x, self.y, self.z = unpack3(pack3(x, y, z))
 
     def copy(self) -> Vector3:
         v = _new(Vector3)
@@ -48,23 +50,17 @@ class Vector3:
 
     def __add__(self, other: Vector3) -> Vector3:
         v = _new(Vector3)
-        v.x = self.x + other.x
-        v.y = self.y + other.y
-        v.z = self.z + other.z
+        v.x, v.y, v.z = unpack3(pack3(self.x + other.x, self.y + other.y, self.z + other.z))
         return v
 
     def __sub__(self, other: Vector3) -> Vector3:
         v = _new(Vector3)
-        v.x = self.x - other.x
-        v.y = self.y - other.y
-        v.z = self.z - other.z
+        v.x, v.y, v.z = unpack3(pack3(self.x - other.x, self.y - other.y, self.z - other.z))
         return v
 
     def __mul__(self, scalar: float) -> Vector3:
         v = _new(Vector3)
-        v.x = self.x * scalar
-        v.y = self.y * scalar
-        v.z = self.z * scalar
+        v.x, v.y, v.z = unpack3(pack3(self.x * scalar, self.y * scalar, self.z * scalar))
         return v
 
     __rmul__ = __mul__
@@ -73,7 +69,9 @@ class Vector3:
         return Vector3(self.x / scalar, self.y / scalar, self.z / scalar)
 
     def __neg__(self) -> Vector3:
-        return Vector3(-self.x, -self.y, -self.z)
+        v = _new(Vector3)
+        v.x, v.y, v.z = -self.x, -self.y, -self.z  # exact
+        return v
 
     def exactly_equals(self, other: Vector3) -> bool:
         """Bitwise-value equality (Python's ``==`` is the retail epsilon test)."""
@@ -137,9 +135,7 @@ class Vector3:
         if length < EPSILON:
             return True
         inv = 1.0 / length
-        self.x *= inv
-        self.y *= inv
-        self.z *= inv
+        self.x, self.y, self.z = unpack3(pack3(inv * self.x, inv * self.y, inv * self.z))
         return False
 
     def get_heading(self) -> float:
@@ -158,7 +154,7 @@ class Vector3:
 
 
 def zero_vector() -> Vector3:
-    """``Vector3()`` without the constructor's ``float()`` calls, for hot paths."""
+    """``Vector3()`` without the constructor's narrowing, for hot paths."""
     v = _new(Vector3)
     v.x = v.y = v.z = 0.0
     return v

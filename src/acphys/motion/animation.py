@@ -11,15 +11,16 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from acphys.constants import EPSILON, float32
+from acphys.constants import EPSILON
 from acphys.math.frame import Frame
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.motion.anim_hooks import AnimHook
 
 #: ``F_EPSILON`` (acclient_data.h:598) is a float32 0.0002; the frame bias of
 #: get_starting_frame / get_ending_frame subtracts exactly this value.
-F_EPSILON: float = float32(EPSILON)
+F_EPSILON: float = f32(EPSILON)
 
 #: Retail's AnimData / AnimSequenceNode default framerate (the literal 1106247680 = 0x41F00000).
 DEFAULT_FRAMERATE: float = 30.0

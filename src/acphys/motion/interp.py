@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from acphys.constants import EPSILON, float32
+from acphys.constants import EPSILON
 from acphys.flags import PhysicsState, TransientState, member_namespace
 from acphys.math.vector import Vector3
 from acphys.motion.commands import (
@@ -49,6 +49,7 @@ from acphys.motion.movement import (
     MovementStruct,
     MovementType,
 )
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.motion.weenie import Weenie
@@ -59,11 +60,11 @@ TS = member_namespace(TransientState)
 MF = MovementFlags
 
 #: Locomotion speeds of the standard human cycles at speed 1 (m/s); float32 as the binary holds them.
-WALK_ANIM_SPEED = float32(3.1199999)
+WALK_ANIM_SPEED = f32(3.1199999)
 RUN_ANIM_SPEED = 4.0
 SIDESTEP_ANIM_SPEED = 1.25
 #: Walking backwards is walking forwards at -0.65 of the speed.
-BACKWARDS_FACTOR = float32(0.64999998)
+BACKWARDS_FACTOR = f32(0.64999998)
 #: Sidestep speed scale, ``3.1199999 / 1.25 * 0.5`` evaluated from the float32 operands (≈ 1.248).
 SIDESTEP_FACTOR = WALK_ANIM_SPEED / SIDESTEP_ANIM_SPEED * 0.5
 #: With the run key held, turning is 1.5 times faster ...
@@ -204,14 +205,14 @@ class MotionInterp:
         if motion == WALK_FORWARD:
             if speed > 0.0:
                 motion = RUN_FORWARD
-            speed = float32(rate * speed)
+            speed = f32(rate * speed)
         elif motion == TURN_RIGHT:
-            speed = float32(RUN_TURN_FACTOR * speed)
+            speed = f32(RUN_TURN_FACTOR * speed)
         elif motion == SIDE_STEP_RIGHT:
             speed = rate * speed
             if abs(speed) > MAX_SIDESTEP_ANIM_RATE:
                 speed = MAX_SIDESTEP_ANIM_RATE if speed > 0.0 else -MAX_SIDESTEP_ANIM_RATE
-            speed = float32(speed)
+            speed = f32(speed)
         return motion, speed
 
     def adjust_motion(self, motion: int, speed: float, key: HoldKey = HoldKey.INVALID) -> tuple[int, float]:
@@ -229,13 +230,13 @@ class MotionInterp:
         if self._is_non_creature() or motion == RUN_FORWARD:
             return motion, speed
         if motion == TURN_LEFT:
-            motion, speed = TURN_RIGHT, float32(-speed)
+            motion, speed = TURN_RIGHT, f32(-speed)
         elif motion == WALK_BACKWARDS:
-            motion, speed = WALK_FORWARD, float32(-BACKWARDS_FACTOR * speed)
+            motion, speed = WALK_FORWARD, f32(-BACKWARDS_FACTOR * speed)
         elif motion in (SIDE_STEP_RIGHT, SIDE_STEP_LEFT):
             if motion == SIDE_STEP_LEFT:
-                motion, speed = SIDE_STEP_RIGHT, float32(-speed)
-            speed = float32(SIDESTEP_FACTOR * speed)
+                motion, speed = SIDE_STEP_RIGHT, f32(-speed)
+            speed = f32(SIDESTEP_FACTOR * speed)
         if key == HoldKey.INVALID:
             key = self.raw_state.current_holdkey
         if key == HoldKey.RUN:

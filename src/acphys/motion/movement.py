@@ -10,8 +10,8 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass, field
 
-from acphys.constants import float32
 from acphys.math.position import Position
+from acphys.precision import f32
 
 
 class MovementType(enum.IntEnum):
@@ -107,7 +107,7 @@ class MovementParameters:
     """
 
     flags: MovementFlags = DEFAULT_MOVEMENT_FLAGS
-    distance_to_object: float = float32(0.6)
+    distance_to_object: float = f32(0.6)
     min_distance: float = 0.0
     desired_heading: float = 0.0
     speed: float = 1.0

@@ -27,12 +27,12 @@ from __future__ import annotations
 
 import math
 
-from acphys.constants import float32
+from acphys.precision import f32
 
 #: ``GetJumpHeight`` constants as the binary holds them (float32).
-_JUMP_SKILL_SPAN = float32(22.200001)
-_JUMP_HEIGHT_BASE = float32(0.050000001)
-_JUMP_HEIGHT_MIN = float32(0.34999999)
+_JUMP_SKILL_SPAN = f32(22.200001)
+_JUMP_HEIGHT_BASE = f32(0.050000001)
+_JUMP_HEIGHT_MIN = f32(0.34999999)
 #: ``InqJumpVelocity``: v_z = sqrt(height * 19.6), i.e. sqrt(2 g h) with g = 9.8.
 _TWO_G = 19.6
 
@@ -213,7 +213,7 @@ class Weenie:
         if not self.the_player:
             return None
         skill = self.run_skill if self.stamina else 0
-        return float32(get_run_rate(self.load, skill, 1.0))
+        return f32(get_run_rate(self.load, skill, 1.0))
 
     def inq_jump_velocity(self, extent: float) -> float | None:
         """Upward launch speed ``sqrt(19.6 * height)`` for a jump of ``extent``; None if not the player.
@@ -225,7 +225,7 @@ class Weenie:
         if not self.the_player:
             return None
         skill = self.jump_skill if self.stamina else 0
-        return float32(math.sqrt(get_jump_height(self.load, skill, extent, 1.0) * _TWO_G))
+        return f32(math.sqrt(get_jump_height(self.load, skill, extent, 1.0) * _TWO_G))
 
     def can_jump(self, extent: float) -> bool:
         """The player can jump under twice their capacity; nobody else can.

@@ -20,7 +20,6 @@ from collections.abc import Callable
 from importlib import resources
 from typing import Any
 
-from acphys.constants import float32
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 from acphys.motion import anim_hooks
@@ -33,6 +32,7 @@ from acphys.motion.motion_table import (
     MotionTable,
     cycle_key,
 )
+from acphys.precision import f32
 from acphys.scenario import values as read
 from acphys.scenario.values import Ctx, ScenarioError
 
@@ -113,7 +113,7 @@ def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hook
 
 
 def _float32_vector(v: Vector3) -> Vector3:
-    return Vector3(float32(v.x), float32(v.y), float32(v.z))
+    return Vector3(f32(v.x), f32(v.y), f32(v.z))
 
 
 def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> MotionData:
@@ -121,7 +121,7 @@ def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> Mo
     for required in ("framerate", "frames"):
         if required not in entry:
             raise ctx.fail(f"{key}.{required}", "missing (an animation needs framerate and frames)")
-    framerate = float32(read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0))
+    framerate = f32(read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0))
     num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, 100000)
     low_frame = _count(ctx, f"{key}.low_frame", entry.get("low_frame", 0), 0, num_frames - 1)
     high_frame = _count(ctx, f"{key}.high_frame", entry.get("high_frame", -1), -1, num_frames - 1)

@@ -29,9 +29,10 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from acphys.constants import EPSILON, LANDING_Z, float32
+from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import TransitionState, member_namespace
 from acphys.math.frame import Frame
+from acphys.precision import f32
 from acphys.transition.transition import InsertType
 
 if TYPE_CHECKING:
@@ -42,7 +43,7 @@ TS = member_namespace(TransitionState)
 #: ``find_placement_pos``: rings reach out to this distance (m), 2 m for a sphere under 0.125 m.
 PLACEMENT_ADJUST_DISTANCE = 4.0
 #: ``find_placement_pos``: smaller spheres are treated as this radius when spacing the rings.
-PLACEMENT_MIN_RADIUS = float32(0.48)
+PLACEMENT_MIN_RADIUS = f32(0.48)
 #: ``find_placement_pos``: below this radius the sphere is a "fake" one (half the reach).
 PLACEMENT_FAKE_RADIUS = 0.125
 #: The pi literal ``find_placement_pos`` spaces the candidates around a ring with (acclient.c:313096).
@@ -151,19 +152,19 @@ def find_placement_pos(transition: Transition) -> bool:
     if steps <= 1.0:
         return False
     num_steps = math.ceil(steps)
-    dist_per_step = float32(adjust_rad / num_steps)
-    d_num_radial = float32(dist_per_step / radius * PLACEMENT_PI)
+    dist_per_step = f32(adjust_rad / num_steps)
+    d_num_radial = f32(dist_per_step / radius * PLACEMENT_PI)
     distance = 0.0
     total_rad = 0.0
     for _ in range(num_steps):
-        distance = float32(distance + dist_per_step)
-        total_rad = float32(total_rad + d_num_radial)
+        distance = f32(distance + dist_per_step)
+        total_rad = f32(total_rad + d_num_radial)
         num_rad = 2 * math.ceil(total_rad)
         angle_offset = 360.0 / num_rad
         offset_frame = Frame()
         for ja in range(num_rad):
             _reset_check_pos(transition)
-            offset_frame.set_heading(float32(ja * angle_offset))
+            offset_frame.set_heading(f32(ja * angle_offset))
             offset = offset_frame.get_vector_heading() * distance
             path.global_offset = transition.adjust_offset(offset)
             if path.global_offset.length_squared() < EPSILON * EPSILON:

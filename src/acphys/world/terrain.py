@@ -33,11 +33,12 @@ import math
 from collections.abc import Iterable, Sequence
 from enum import IntEnum
 
-from acphys.constants import CELL_LENGTH, CELLS_PER_BLOCK, float32
+from acphys.constants import CELL_LENGTH, CELLS_PER_BLOCK
 from acphys.geometry.plane import Sidedness
 from acphys.geometry.polygon import Polygon, SidesType
 from acphys.math.cell_id import LAST_LAND_CELL, inbound_valid_cellid
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 #: Vertices along a landblock side (``side_vertex_count`` at full detail).
 SIDE_VERTEX_COUNT = CELLS_PER_BLOCK + 1
@@ -52,11 +53,11 @@ MAX_LAND_HEIGHT = 1000.0 - 200.0
 HALF_CELL = CELL_LENGTH / 2.0
 
 #: ``calc_water_depth`` for a point whose nearest vertex is solid ground (acclient.c:353707).
-SOLID_VERTEX_WATER_DEPTH = float32(0.1)
+SOLID_VERTEX_WATER_DEPTH = f32(0.1)
 #: ``calc_water_depth`` for a point whose nearest vertex is water (acclient.c:353701).
-WATER_VERTEX_WATER_DEPTH = float32(0.44999999)
+WATER_VERTEX_WATER_DEPTH = f32(0.44999999)
 #: ``get_water_depth`` of a cell whose four vertices are all water (acclient.c:347247).
-ENTIRELY_WATER_DEPTH = float32(0.89999998)
+ENTIRELY_WATER_DEPTH = f32(0.89999998)
 
 
 class SurfChar(IntEnum):

@@ -14,6 +14,7 @@ from acphys.motion.movement import MovementError, MovementParameters, MovementSt
 from acphys.motion.sequence import Sequence
 from acphys.motion.table_manager import MotionTableManager
 from acphys.physics_part import PhysicsPart
+from acphys.precision import f32, pack3, unpack3
 from acphys.setup import Setup
 
 if TYPE_CHECKING:
@@ -27,11 +28,42 @@ if TYPE_CHECKING:
 DEFAULT_PLACEMENT_ID = 0x65
 
 
+def combine_scaled(dst: Frame, f1: Frame, f2: Frame, scale: float) -> None:
+    """``dst = f1 ∘ f2`` with ``f2``'s offset scaled by ``scale`` (a part placed on its body).
+
+    The scaled offset stays in registers; the origin sums run x, z, y then ``f1``'s origin, and
+    the quaternion keeps this overload's order of operands (acclient.c:326581-326597). ``dst``
+    must not be ``f1`` or ``f2``.
+
+    Retail: Frame::combine @ 0x00518FD0 (acclient.c:326562)
+    """
+    m = f1.m
+    o = f2.origin
+    sx, sy, sz = o.x * scale, o.y * scale, o.z * scale
+    fo = f1.origin
+    dst.origin.x, dst.origin.y, dst.origin.z = unpack3(
+        pack3(
+            sx * m[0] + sz * m[6] + sy * m[3] + fo.x,
+            sx * m[1] + sz * m[7] + sy * m[4] + fo.y,
+            sx * m[2] + sz * m[8] + sy * m[5] + fo.z,
+        )
+    )
+    w1, x1, y1, z1 = f1.qw, f1.qx, f1.qy, f1.qz
+    w2, x2, y2, z2 = f2.qw, f2.qx, f2.qy, f2.qz
+    dst.set_rotate(
+        w2 * w1 - x2 * x1 - y2 * y1 - z2 * z1,
+        x2 * w1 + w2 * x1 + z2 * y1 - y2 * z1,
+        w1 * y2 - x1 * z2 + x2 * z1 + w2 * y1,
+        w1 * z2 + x1 * y2 - x2 * y1 + w2 * z1,
+    )
+
+
 class PartArray:
     """Retail ``CPartArray`` (acclient.h:30762): owns the setup, the sequence and the motion tables.
 
     ``scale`` is the part array's (uniform) scale, kept equal to the body's
-    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``. ``parts`` holds one part per
+    ``m_scale`` by ``CPhysicsObj::SetScaleStatic``; it is a float32 (retail's is a
+    ``Vector3`` of floats). ``parts`` holds one part per
     ``setup.parts`` entry (``InitParts``, acclient.c:325273), or the one part of a setup without
     that list. A many-part array starts in its default placement: ``CPartArray::CreateSetup``
     (acclient.c:326946) calls ``SetPlacementFrame(0x65)``, which hands the sequence the setup's
@@ -80,9 +112,11 @@ class PartArray:
     def update(self, quantum: float, offset_frame: Frame) -> None:
         """Advance the sequence, writing root motion into ``offset_frame``.
 
+        ``quantum`` is a ``float`` parameter: the sequence plays the float32 quantum.
+
         Retail: CPartArray::Update @ 0x00517DB0 (acclient.c:325139)
         """
-        self.sequence.update(quantum, offset_frame)
+        self.sequence.update(f32(quantum), offset_frame)
 
     def handle_movement(self) -> None:
         """Tick the motion-table manager, if there is one.
@@ -203,7 +237,7 @@ class PartArray:
 
         Retail: CPartArray::SetScaleInternal @ 0x00518A00 (acclient.c:326181)
         """
-        self.scale = new_scale
+        new_scale = self.scale = f32(new_scale)
         if self.setup.parts is None:
             for part in self.parts:
                 part.gfxobj_scale = Vector3(new_scale, new_scale, new_scale)
@@ -226,8 +260,8 @@ class PartArray:
 
     def update_parts(self, frame: Frame) -> None:
         """Each part's frame is ``frame`` combined with its frame in the current animation frame
-        (or placement frame), whose offset is scaled by ``scale`` (``Frame::combine`` with a
-        scale, acclient.c:326562); only as many parts as both have.
+        (or placement frame), whose offset is scaled by ``scale`` (:func:`combine_scaled`);
+        only as many parts as both have.
 
         With neither (a setup without part descriptions brings no placement frame) the single
         part sits at the setup origin, so its frame is ``frame`` itself.
@@ -239,10 +273,9 @@ class PartArray:
             for part in self.parts:
                 part.pos.frame.assign(frame)
             return
+        scale = self.scale
         for part, part_frame in zip(self.parts, anim_frame.frames, strict=False):
-            offset = part_frame.copy()
-            offset.origin = offset.origin * self.scale
-            part.pos.frame.combine(frame, offset)
+            combine_scaled(part.pos.frame, frame, part_frame, scale)
 
     def find_obj_collisions(self, transition: SphereTransition) -> TransitionState:
         """Each part in turn (``PhysicsPart.find_obj_collisions``) until one answers other than OK;

@@ -85,7 +85,7 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3, zero_vector
 from acphys.part_array import PartArray
-from acphys.precision import f32
+from acphys.precision import f32, pack3, pack4, unpack3, unpack4
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.transition import Transition
 from acphys.world.obj_cell import ObjCell, ShadowObj
@@ -95,6 +95,8 @@ if TYPE_CHECKING:
     from acphys.motion.movement_manager import MovementManager
     from acphys.motion.weenie import Weenie
     from acphys.world.world import World
+
+_new = object.__new__
 
 PS = member_namespace(PhysicsState)
 TS = member_namespace(TransientState)
@@ -210,6 +212,10 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         remains, then the remainder only if it exceeds MIN_QUANTUM.
         ``update_time`` advances only by the time integrated.
 
+        ``player_distance`` is a ``float`` field, but the cull tests the unrounded
+        length still in the register (acclient.c:323112-323114); ``update_time``
+        and the physics timer are doubles.
+
         Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
         """
         world = self.world
@@ -219,8 +225,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         player = world.player
         if player is not None:
             self.player_vector = player.position.get_offset(self.position)
-            self.player_distance = self.player_vector.length()
-            if self.player_distance > ACTIVITY_DISTANCE and world.activity_cull:
+            distance = self.player_vector.length()
+            self.player_distance = f32(distance)
+            if distance > ACTIVITY_DISTANCE and world.activity_cull:
                 self.transient_state &= ~TS.ACTIVE
             else:
                 self.set_active(True)
@@ -260,7 +267,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
     def update_object_internal(self, quantum: float) -> None:
         """One physics step: candidate frame, sweep, commit, then the managers.
 
-        An inactive body only ticks its particles and scripts.
+        An inactive body only ticks its particles and scripts. ``cached_velocity`` is the swept
+        offset times the reciprocal of the quantum (see :func:`_over_quantum`), stored as floats
+        (acclient.c:322816-322828).
 
         Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
         """
@@ -281,8 +290,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
                     self._align_heading(new_pos.frame)
                     transit = self.transition(self.position, new_pos)
                     if transit is not None:
-                        offset = self.position.get_offset(transit.sphere_path.curr_pos)
-                        self.cached_velocity = offset / quantum
+                        self.cached_velocity = _over_quantum(
+                            self.position.get_offset(transit.sphere_path.curr_pos), quantum
+                        )
                         self.set_position_internal(transit)
                     else:
                         self._keep_origin(new_pos.frame)
@@ -333,7 +343,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Root motion is scaled by ``scale`` on walkable ground and by 0
         otherwise (its rotation always applies). ``HIDDEN`` skips root motion
-        and integration. ``new_frame`` becomes ``position.frame ∘ offset``.
+        and integration. ``new_frame`` becomes ``position.frame ∘ offset``. The scaled
+        offset is stored back into the frame's ``float`` origin (acclient.c:320016-320025).
 
         Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988)
         """
@@ -342,9 +353,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             if self.part_array is not None:
                 self.part_array.update(quantum, offset)
             factor = self.scale if self.transient_state & TS.ON_WALKABLE else 0.0
-            offset.origin.x *= factor
-            offset.origin.y *= factor
-            offset.origin.z *= factor
+            o = offset.origin
+            o.x, o.y, o.z = unpack3(pack3(o.x * factor, o.y * factor, o.z * factor))
         if self.position_manager is not None:
             self.position_manager.adjust_offset(offset, quantum)
         new_frame.combine(self.position.frame, offset)
@@ -361,11 +371,15 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         manager on walkable ground is deactivated. Always ``v += a·dt`` and
         ``frame.grotate(omega·dt)``.
 
+        ``velocity_mag2`` is a ``float`` local; the displacement terms are summed in retail's
+        order with its 4-byte spills (acclient.c:317756-317769), and the ``a·dt`` of z is
+        spilled before it is added (acclient.c:317771-317776).
+
         Retail: CPhysicsObj::UpdatePhysicsInternal @ 0x00510700 (acclient.c:317700)
         """
         v = self.velocity
         a = self.acceleration
-        velocity_mag2 = v.x * v.x + v.y * v.y + v.z * v.z
+        velocity_mag2 = f32(v.x * v.x + v.y * v.y + v.z * v.z)
         if velocity_mag2 <= 0.0:
             if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
                 self.transient_state &= ~TS.ACTIVE
@@ -376,14 +390,20 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             self.calc_friction(quantum, velocity_mag2)
             v = self.velocity
             if velocity_mag2 - SMALL_VELOCITY * SMALL_VELOCITY < EPSILON:
-                v = self.velocity = zero_vector()
+                v.x = v.y = v.z = 0.0
+            # The spills: x's half-acceleration term twice (after each dt), y's once, z's velocity
+            # term and half acceleration (the float vectors ``result`` and ``w``); the x and z sums.
+            ax_half_dt, ay_term, vz_term, half_az = unpack4(
+                pack4(a.x * 0.5 * quantum, a.y * 0.5 * quantum * quantum, quantum * v.z, a.z * 0.5)
+            )
+            move_x = f32(quantum * v.x + f32(ax_half_dt * quantum))
+            move_z = f32(vz_term + half_az * quantum * quantum)
             origin = frame.origin
-            origin.x = (quantum * v.x + a.x * 0.5 * quantum * quantum) + origin.x
-            origin.y = (quantum * v.y + a.y * 0.5 * quantum * quantum) + origin.y
-            origin.z = (quantum * v.z + a.z * 0.5 * quantum * quantum) + origin.z
-        v.x += quantum * a.x
-        v.y += quantum * a.y
-        v.z += quantum * a.z
+            origin.x, origin.y, origin.z = unpack3(
+                pack3(move_x + origin.x, quantum * v.y + ay_term + origin.y, move_z + origin.z)
+            )
+        dvz = f32(quantum * a.z)
+        v.x, v.y, v.z = unpack3(pack3(quantum * a.x + v.x, quantum * a.y + v.y, dvz + v.z))
         frame.grotate(self.omega * quantum)
 
     def calc_friction(self, quantum: float, velocity_mag2: float) -> None:
@@ -395,18 +415,21 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         stops dead under 1.25 m/s (f = 1) and, at 2.5 m/s or more on a
         contact plane steeper than 10°, slides with f = 0.2.
 
+        The normal speed is summed z first; its z component is spilled before it is taken
+        off, and every velocity component is stored after each of the two steps
+        (acclient.c:316111-316154).
+
         Retail: CPhysicsObj::calc_friction @ 0x0050EE70 (acclient.c:316090)
         """
         if not self.transient_state & TS.ON_WALKABLE:
             return
         n = self.contact_plane.N
         v = self.velocity
-        normal_speed = v.x * n.x + v.y * n.y + v.z * n.z
+        normal_speed = v.z * n.z + v.y * n.y + v.x * n.x
         if normal_speed >= 0.25:
             return
-        v.x -= normal_speed * n.x
-        v.y -= normal_speed * n.y
-        v.z -= normal_speed * n.z
+        dz = f32(normal_speed * n.z)
+        v.x, v.y, v.z = unpack3(pack3(v.x - normal_speed * n.x, v.y - normal_speed * n.y, v.z - dz))
         friction = self.friction
         if self.state & PS.SLEDDING:
             if velocity_mag2 < SLEDDING_STOP_SPEED2:
@@ -414,9 +437,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             elif velocity_mag2 >= SLEDDING_FAST_SPEED2 and n.z < SLEDDING_STEEP_Z:
                 friction = SLEDDING_FRICTION
         factor = math.pow(1.0 - friction, quantum)
-        v.x *= factor
-        v.y *= factor
-        v.z *= factor
+        v.x, v.y, v.z = unpack3(pack3(factor * v.x, factor * v.y, factor * v.z))
 
     def calc_acceleration(self) -> None:
         """Standing on walkable ground (and not sledding): no acceleration and no omega.
@@ -546,10 +567,14 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         """``contact``, unless the body is in contact and moving off its contact plane
         (velocity · N > EPSILON).
 
+        The dot product is summed z, y, x, as retail sums it (acclient.c:316541-316543).
+
         Retail: CPhysicsObj::check_contact @ 0x0050F5B0 (acclient.c:316535)
         """
-        if self.transient_state & TS.CONTACT and self.velocity.dot(self.contact_plane.N) > EPSILON:
-            return False
+        if self.transient_state & TS.CONTACT:
+            v, n = self.velocity, self.contact_plane.N
+            if v.z * n.z + v.y * n.y + v.x * n.x > EPSILON:
+                return False
         return contact
 
     @staticmethod
@@ -625,7 +650,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Reports come first: every collided object is tracked (and reported
         once while its record lives), expired records are ended, then
         touching the environment, or landing on walkable ground, reports as
-        an environment collision. True when anything was reported.
+        an environment collision. True when anything was reported. In the bounce the y and z
+        terms of the impulse are spilled to ``float`` before they are added, the x term is not
+        (acclient.c:321876-321886).
 
         Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807)
         """
@@ -654,9 +681,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
                     approach = v.z * n.z + v.y * n.y + n.x * v.x
                     if approach < 0.0:
                         impulse = -(approach * (self.elasticity + 1.0))
-                        v.x = impulse * n.x + v.x
-                        v.y = impulse * n.y + v.y
-                        v.z = impulse * n.z + v.z
+                        dy = f32(impulse * n.y)
+                        dz = f32(impulse * n.z)
+                        v.x, v.y, v.z = unpack3(pack3(impulse * n.x + v.x, dy + v.y, dz + v.z))
         else:
             self.velocity = zero_vector()
         if frames in (0, 3):
@@ -702,21 +729,30 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
     def set_local_velocity(self, local_velocity: Vector3) -> None:
         """Set the velocity given in the body's own frame.
 
+        Retail inlines the rotation, summing x, y, z in that order (not ``localtoglobalvec``'s
+        z, x, y) into a ``Vector3`` local (acclient.c:318622-318630).
+
         Retail: CPhysicsObj::set_local_velocity @ 0x005114D0 (acclient.c:318617)
         """
-        self.set_velocity(self.position.frame.localtoglobalvec(local_velocity))
+        m = self.position.frame.m
+        x, y, z = local_velocity.x, local_velocity.y, local_velocity.z
+        self.set_velocity(
+            Vector3(
+                m[0] * x + m[3] * y + m[6] * z,
+                m[1] * x + m[4] * y + m[7] * z,
+                m[2] * x + m[5] * y + m[8] * z,
+            )
+        )
 
     def set_omega(self, new_omega: Vector3) -> None:
-        """Take ``new_omega`` (rad/s). Retail takes any value; an omega whose squared length
-        overflows would turn the frame to NaN in ``grotate``, so acphys refuses it.
+        """Take ``new_omega`` (rad/s). Retail takes any value; a component past float32 range is
+        an infinity once stored (a ``Vector3``), which would turn the frame to NaN in ``grotate``,
+        so acphys refuses a non-finite omega. (Any finite float32 omega squares to a finite
+        double, so ``grotate`` can always rotate by it.)
 
         Retail: CPhysicsObj::set_omega @ 0x0050F6D0 (acclient.c:316612)
         """
         _require_finite("omega", new_omega)
-        if not math.isfinite(new_omega.length_squared()):
-            raise ValueError(
-                f"omega is too large to rotate by: ({new_omega.x}, {new_omega.y}, {new_omega.z})"
-            )
         self.omega = new_omega.copy()
 
     def set_heading(self, degrees: float) -> None:
@@ -726,11 +762,15 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self.set_frame(frame)
 
     def set_elasticity(self, elasticity: float) -> None:
-        """Clamp to [0, 0.1].
+        """Clamp the ``float`` argument to [0, 0.1]; one that is not ``>= 0`` (a NaN too) is 0.
 
         Retail: CPhysicsObj::set_elasticity @ 0x0050FD40 (acclient.c:317060)
         """
-        self.elasticity = min(max(elasticity, 0.0), MAX_ELASTICITY)
+        elasticity = f32(elasticity)
+        if not elasticity >= 0.0:
+            self.elasticity = 0.0
+        else:
+            self.elasticity = min(elasticity, MAX_ELASTICITY)
 
     def set_state(self, new_state: PhysicsState) -> None:
         """Replace ``state``; toggling ``HIDDEN`` goes through :meth:`set_hidden`.
@@ -799,6 +839,18 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         return any(
             shadow.cell is not None and shadow.cell.check_collisions(self) for shadow in self.shadow_objects
         )
+
+
+def _over_quantum(offset: Vector3, quantum: float) -> Vector3:
+    """``offset / quantum`` as retail's ``Vector3::operator/`` divides: by multiplying by the
+    reciprocal, which is also stored into the ``float`` parameter's slot. The x component uses
+    the unrounded reciprocal, y and z the float32 one (acclient.c:146876-146883).
+    """
+    inv = 1.0 / quantum
+    inv32 = f32(inv)
+    v = _new(Vector3)
+    v.x, v.y, v.z = unpack3(pack3(inv * offset.x, inv32 * offset.y, inv32 * offset.z))
+    return v
 
 
 def _require_finite(what: str, v: Vector3) -> None:

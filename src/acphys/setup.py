@@ -9,6 +9,7 @@ from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack4, unpack4
 
 if TYPE_CHECKING:
     from acphys.geometry.bbox import BBox
@@ -46,6 +47,7 @@ class Setup:
 
     Shapes are in the body's local frame, before scaling; ``CPartArray``
     scales ``height``, ``radius`` and the step heights by the body's scale.
+    Those four are ``float`` fields, stored as float32 when the setup is made.
     ``physics_bsp`` is the solid geometry of a one-part object (retail keeps
     it on the part's ``CGfxObj``; ``has_physics_bsp`` says whether there is one).
     ``motion_table`` stands for ``default_mtable_id``.
@@ -73,6 +75,9 @@ class Setup:
     holding_locations: dict[int, LocationType] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        self.height, self.radius, self.step_up_height, self.step_down_height = unpack4(
+            pack4(self.height, self.radius, self.step_up_height, self.step_down_height)
+        )
         if self.parts is None:
             return
         if not self.parts:
@@ -118,7 +123,7 @@ def bounding_sphere(spheres: list[Sphere]) -> Sphere:
     center = first.center + direction * (radius - first.radius)
     enclosing = Sphere(center, radius)
     for sphere in spheres[1:-1]:
-        enclosing.radius = max(enclosing.radius, (sphere.center - center).length() + sphere.radius)
+        enclosing.radius = f32(max(enclosing.radius, (sphere.center - center).length() + sphere.radius))
     return enclosing
 
 

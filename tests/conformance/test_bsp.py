@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import struct
+
 import pytest
 
 from acphys.constants import EPSILON
@@ -9,6 +11,7 @@ from acphys.geometry.bsp import (
     CELL_ENTIRELY_INSIDE,
     CELL_OUTSIDE,
     CELL_PARTIALLY_INSIDE,
+    CELL_SPHERE_SLACK,
     NODE_TYPE_LEAF,
     BSPLeaf,
     BSPNode,
@@ -21,8 +24,16 @@ from acphys.geometry.plane import Plane
 from acphys.geometry.polygon import Polygon
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 BIG = Sphere(Vector3(), 100.0)
+
+
+def f32_step(value: float, steps: int) -> float:
+    """The float32 ``steps`` representable values away from the float32 ``value``, away from zero
+    for positive ``steps`` (toward it for negative)."""
+    bits = struct.unpack("<I", struct.pack("<f", value))[0] + steps
+    return struct.unpack("<f", struct.pack("<I", bits))[0]
 
 
 def square_at_x0() -> Polygon:
@@ -89,9 +100,16 @@ class TestSphereIntersectsSolid:
 
     def test_band_is_radius_less_epsilon(self) -> None:
         r = 0.5
-        # dist exactly r - EPS: `v5 >= v6` -> only the empty pos leaf (acclient.c:363591)
-        assert not half_space_tree().sphere_intersects_solid(Sphere(Vector3(r - EPSILON, 0, 0), r), True)
-        # a bit closer straddles: pos with center_check, neg without; the face is hit (acclient.c:363606)
+        # The band is the double r - EPS = 0.4998000000051 (acclient.c:363589); a float32 centre
+        # cannot sit on it: f32(r - EPS) = 0.49979999661 is just inside, the next float32 up
+        # (0.49980002642) just outside.
+        inside = f32(r - EPSILON)
+        outside = f32_step(inside, 1)
+        assert inside < r - EPSILON < outside
+        # dist >= r - EPS: `v5 >= v6` -> only the empty pos leaf (acclient.c:363591)
+        assert not half_space_tree().sphere_intersects_solid(Sphere(Vector3(outside, 0, 0), r), True)
+        # just inside straddles: pos with center_check, neg without; the face is hit (acclient.c:363606)
+        assert half_space_tree().sphere_intersects_solid(Sphere(Vector3(inside, 0, 0), r), True)
         assert half_space_tree().sphere_intersects_solid(Sphere(Vector3(r - 2 * EPSILON, 0, 0), r), True)
 
     def test_straddle_passes_center_check_only_to_centre_side(self) -> None:
@@ -177,8 +195,15 @@ class TestCellBsp:
         # dist >= r + 0.01 at both planes, then the leaf's zero plane gives dist 0 < r', with no
         # pos_node after it -> 1 (acclient.c:363005, 363020): a chain ending at a leaf never says 2.
         assert t.sphere_intersects_cell_bsp(Sphere(Vector3(5, 0, 0), 1.0)) == CELL_PARTIALLY_INSIDE
-        # dist <= -(r + 0.0099999998) -> 0 (acclient.c:362995)
-        assert t.sphere_intersects_cell_bsp(Sphere(Vector3(-1.0099999998, 0, 0), 1.0)) == CELL_OUTSIDE
+        # dist <= -(r + 0.0099999998) -> 0 (acclient.c:362995). The slack is the float32 0.01 and
+        # r + slack = 1.0099999998 is summed in double; the float32 centre nearest it,
+        # -1.0099999905, is inside, the next one out (-1.0100001097) is outside.
+        assert f32(0.01) == CELL_SPHERE_SLACK
+        near = f32(-1.0099999998)
+        assert -near < 1.0 + CELL_SPHERE_SLACK
+        assert t.sphere_intersects_cell_bsp(Sphere(Vector3(near, 0, 0), 1.0)) == CELL_PARTIALLY_INSIDE
+        beyond = Sphere(Vector3(f32_step(near, 1), 0, 0), 1.0)
+        assert t.sphere_intersects_cell_bsp(beyond) == CELL_OUTSIDE
         assert t.sphere_intersects_cell_bsp(Sphere(Vector3(-1.0, 0, 0), 1.0)) == CELL_PARTIALLY_INSIDE
 
     def test_sphere_entirely_inside_without_leaf(self) -> None:

@@ -10,6 +10,7 @@ the landblock origin unrotated at scale 1, so tree space is global space.
 from __future__ import annotations
 
 import math
+import struct
 
 import pytest
 
@@ -25,6 +26,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo
 from acphys.transition.transition import InsertType, SpherePath
@@ -74,6 +76,12 @@ def make_path(
     path.walkable_allowance = FLOOR_Z
     path.cache_localspace_sphere(owner if owner is not None else Position(CELL, Frame()), scale)
     return path
+
+
+def f32_neighbour(value: float, steps: int) -> float:
+    """The float32 ``steps`` representable values above (below, if negative) the positive ``value``."""
+    bits = struct.unpack("<I", struct.pack("<f", value))[0] + steps
+    return struct.unpack("<f", struct.pack("<I", bits))[0]
 
 
 def close(a: Vector3, b: Vector3, tol: float = 1e-9) -> bool:
@@ -199,7 +207,9 @@ class TestPlacementAndEthereal:
         # unscaled (no scale at acclient.c:360896-360911), not the 0.4 a scaled offset would give.
         path = make_path(Vector3(0, 0, 1.6), Vector3(0, 0, 1.6), scale=2.0)
         assert floor().placement_insert(Sweep(path)) == TS.ADJUSTED
-        assert close(path.check_pos.frame.origin, Vector3(0, 0, 1.8))
+        # float32 tolerance: the tree-space centre, the pushed centre and the origin are each
+        # stored as float32 on the way (a few ulps of 1.8); 0.2 and 0.4 are 0.2 apart.
+        assert close(path.check_pos.frame.origin, Vector3(0, 0, 1.8), tol=1e-6)
 
     def test_placement_insert_deep_inside_adjusts_by_nothing(self) -> None:
         # Centre (0,0,0.5) in the floor slab, no face within 0.4998: the first try finds only the
@@ -224,11 +234,12 @@ class TestCheckWalkableAndFloorZ:
 
     @pytest.mark.parametrize(
         ("nz", "walkable"),
-        [(FLOOR_Z, False), (math.nextafter(FLOOR_Z, 2.0), True), (math.nextafter(FLOOR_Z, 0.0), False)],
+        [(FLOOR_Z, False), (f32_neighbour(FLOOR_Z, 1), True), (f32_neighbour(FLOOR_Z, -1), False)],
     )
     def test_slope_at_floor_z(self, nz: float, walkable: bool) -> None:
         # A ramp face through the origin with N = (sqrt(1 - nz²), 0, nz); walkable_hits_sphere
-        # needs N·up > walkable_allowance strictly (acclient.c:360529), allowance = FLOOR_Z.
+        # needs N·up > walkable_allowance strictly (acclient.c:360529), allowance = FLOOR_Z. The
+        # plane's N.z is a float32, so the neighbours tried are the float32 ones.
         nx = math.sqrt(1.0 - nz * nz)
         ramp = Polygon([Vector3(x, y, -nx * x / nz) for x, y in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
         ramp.plane = Plane(Vector3(nx, 0, nz), 0.0)
@@ -338,7 +349,12 @@ class TestContact:
         assert self.wall().find_collisions(sweep, 1.0) == TS.SLID
         assert close(sweep.step_up_normals[0], Vector3(-1, 0, 0))
         assert not sweep.collision_info.contact_plane_valid
-        assert close(path.check_pos.frame.origin, Vector3(0.2, 0.3, 1.0))
+        # In float32 (CSphere::slide_sphere, acclient.c:358944-358951): the step's x is
+        # f32(0 + (0.6f - 0.2f)) = f32(0.40000002086) = 0.40000003576 (a tie, to even), the slide
+        # keeps none of it, and the origin x is f32(0.6f - 0.40000003576) = 0.19999998808.
+        step_x = f32(0.0 + (f32(0.6) - f32(0.2)))
+        assert step_x == 0.40000003576278687
+        assert path.check_pos.frame.origin.exactly_equals(Vector3(f32(f32(0.6) - step_x), 0.3, 1.0))
         assert close(sweep.collision_info.collision_normal, Vector3(-1, 0, 0))
 
     def test_step_up_success_is_ok(self) -> None:

@@ -2,7 +2,12 @@
 
 Unless a test says otherwise the obstacle is a cylinder of radius 1 and height 2 standing on the
 origin, the mover a sphere of radius 0.5 whose centre is 0.5 above its position (a second one 1 m
-higher), so ``radsum`` = 1.4998 and ``reach`` = radsum + EPSILON = 1.5.
+higher), so ``radsum`` = 1.4998 and ``reach`` = radsum + EPSILON = 1.5. Both are ``float`` in
+retail: ``radsum`` is float32 1.49979997 and ``reach`` comes back to exactly 1.5.
+
+Positions and centres are float32 (``f32(1.9) + 0.5`` is stored as 2.4000001, a tie rounded to
+even), so where a result depends on them the expected value is derived with explicit ``f32``
+steps at the stores the routine makes.
 """
 
 from __future__ import annotations
@@ -18,13 +23,15 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo
 from acphys.transition.transition import InsertType, SpherePath
 
 CELL = 0xA9B40001
 EAST_CELL = 0xAAB40001  # the landblock 192 m east of CELL's
-RADSUM = 1.0 - EPSILON + 0.5
+#: ``radsum`` as CCylSphere::intersects_sphere passes it: a ``float`` (acclient.c:362080).
+RADSUM = f32(1.0 - EPSILON + 0.5)
 
 
 class Sweep:
@@ -155,8 +162,11 @@ class TestStepDown:
         assert close(info.contact_plane.N, Vector3(0, 0, 1))
         assert info.contact_plane.d == pytest.approx(-2.0, abs=1e-9)
         assert info.contact_plane_cell_id == CELL  # acclient.c:361629; ACE leaves the cell id alone
-        assert path.walk_interp == pytest.approx(0.8, abs=1e-9)  # acclient.c:361630
-        assert origin(path).z == pytest.approx(2.0, abs=1e-9)  # +rise (acclient.c:361635)
+        # float32: the centre is f32(1.9f + 0.5) = 2.4000001, so the rise is 0.0999999 and the
+        # interp (1 - rise/0.5), stored into the float walk_interp (acclient.c:361630), 0.8000002.
+        center_z = f32(f32(1.9) + 0.5)
+        assert path.walk_interp == f32((1.0 - (2.0 + 0.5 - center_z) / 0.5) * 1.0) == 0.8000001907348633
+        assert origin(path).z == pytest.approx(2.0, abs=1e-6)  # +rise (acclient.c:361635), float32
 
     def test_resting_on_the_top_is_ok(self) -> None:
         path = make_path(Vector3(0.5, 0, 2.0), Vector3(0.5, 0, 2.0))
@@ -176,7 +186,7 @@ class TestStepDown:
         path.step_down = True
         path.step_down_amt = 0.5
         assert cyl().intersects_sphere(Sweep(path)) == TS.COLLIDED
-        assert origin(path).z == 1.3
+        assert origin(path).z == f32(1.3)  # untouched
 
     def test_second_sphere_alone_uses_sphere_zero_rise(self) -> None:
         # Only sphere 1 reaches a cylinder from 1.9 (acclient.c:361595-361602); the rise is still
@@ -206,7 +216,8 @@ class TestContact:
         path.localspace_pos = Position(CELL, Frame.from_heading(Vector3(), 90.0))
         sweep = Sweep(path, OIS.ON_WALKABLE, step_up_ok=True)
         assert cyl(height=0.3).intersects_sphere(sweep) == TS.OK
-        assert close(sweep.step_up_normals[0], Vector3(0, -1, 0), 1e-9)
+        # float32 tolerance: the heading-90 frame's matrix is float32 (cos 90° is not 0 there).
+        assert close(sweep.step_up_normals[0], Vector3(0, -1, 0), 1e-6)
 
     def test_failed_step_up_falls_back_to_step_up_slide(self) -> None:
         # step_up_slide with a zero step_up_normal moves halfway back to curr (acclient.c:362008).
@@ -287,16 +298,21 @@ class TestCollideWithPoint:
         # Called directly, passing left to right at y = 1.49 and 1.51 from x 3 to 0. At 1.49:
         # D = 81 - (9 + 1.49² - 2.25)·9 >= 0, t = (9 - √D)/9 ≈ 0.94 (acclient.c:361897-361911), so
         # the sphere stops at x = 3 - 3t. At 1.51 D < 0: COLLIDED, untouched (361900, 361953).
-        disc = 81.0 - (9.0 + 1.49 * 1.49 - 2.25) * 9.0
+        # float32: y is f32(1.49); the offset is movement times the time spilled to float
+        # (acclient.c:361913-361923), and the adjusted centre and the origin are stores.
+        y32 = f32(1.49)
+        disc = 81.0 - (y32 * y32 + 9.0 - 1.5 * 1.5) * 9.0
         t = (9.0 - disc**0.5) / 9.0
-        for y, expected, x in ((1.49, TS.ADJUSTED, 3.0 - 3.0 * t), (1.51, TS.COLLIDED, 0.0)):
+        x_stop = f32(3.0 + f32(-3.0 * f32(t)))
+        assert x_stop == pytest.approx(3.0 - 3.0 * t, abs=1e-6)
+        for y, expected, x in ((1.49, TS.ADJUSTED, x_stop), (1.51, TS.COLLIDED, 0.0)):
             path = make_path(Vector3(3, y, 0), Vector3(0, y, 0))
             sweep = Sweep(path, OIS.PATH_CLIPPED | OIS.PERFECT_CLIP)
             ball = path.global_sphere[0]
             info = sweep.collision_info
             result = cyl().collide_with_point(sweep.object_info, path, info, ball, ball.center, RADSUM, 0)
             assert result == expected
-            assert origin(path).x == pytest.approx(x, abs=1e-9)
+            assert origin(path).x == x
 
     def test_top_hit_rewinds_onto_the_cap(self) -> None:
         # Definite cap (0,0,1): t = (0.5 + 2 - 3.5)/-1.2 (acclient.c:361872-361875); offset z -1.0;
@@ -331,7 +347,15 @@ class TestCollideWithPoint:
         path = make_path(Vector3(2, 0, 3), Vector3(1, 0, 1.6))
         sweep = Sweep(path, OIS.PATH_CLIPPED | OIS.PERFECT_CLIP)
         assert cyl().intersects_sphere(sweep) == TS.ADJUSTED
-        assert close(origin(path), Vector3(2 - 1 / 1.4, 0, 2.0), 1e-9)
+        # float32: the check centre z is f32(1.6f + 0.5) = 2.0999999, so movement.z is -1.4000001;
+        # the indefinite cap offset multiplies by the double time (acclient.c:361813-361820), then
+        # curr + offset, the adjustment and the origin are stores (acclient.c:361938-361949).
+        move_z = f32(f32(f32(1.6) + 0.5) - 3.5)
+        time = (0.5 + 2.0 - 3.5) / move_z
+        x = f32(1.0 + f32(f32(2.0 + f32(-1.0 * time)) - 1.0))
+        assert x == pytest.approx(2 - 1 / 1.4, abs=1e-6)
+        assert origin(path).exactly_equals(Vector3(x, 0, origin(path).z))
+        assert origin(path).z == pytest.approx(2.0, abs=1e-6)
         assert close(sweep.collision_info.collision_normal, Vector3(0, 0, 1))
 
     def test_indefinite_diagonal_onto_the_side(self) -> None:
@@ -342,7 +366,17 @@ class TestCollideWithPoint:
         path = make_path(Vector3(3, 0, 3), Vector3(1.2, 0, 1))
         sweep = Sweep(path, OIS.PATH_CLIPPED | OIS.PERFECT_CLIP)
         assert cyl().intersects_sphere(sweep) == TS.ADJUSTED
-        assert close(origin(path), Vector3(1.5, 0, 3.0 - 5.0 / 3.0), 1e-9)
+        # float32: movement.x = f32(1.2f - 3) = -1.7999999523; the side root with reach² the float
+        # f32(1.5²) (acclient.c:361821-361841); the offset uses the time spilled to float
+        # (361842-361851); curr + offset, the adjustment and the origin are stores (361938-361949).
+        mx = f32(f32(1.2) - 3.0)
+        a, b = mx * mx, -(mx * 3.0)
+        disc = b * b - (9.0 - f32(1.5 * 1.5)) * a
+        t32 = f32((b - disc**0.5) / a)
+        x = f32(f32(1.2) + f32(f32(3.0 + f32(mx * t32)) - f32(1.2)))
+        z = f32(1.0 + f32(f32(3.5 + f32(-2.0 * t32)) - 1.5))
+        assert (x, z) == pytest.approx((1.5, 3.0 - 5.0 / 3.0), abs=1e-6)
+        assert origin(path).exactly_equals(Vector3(x, 0, z))
         assert close(sweep.collision_info.collision_normal, Vector3(1, 0, 0), 1e-9)
 
     def test_sphere_one_rewinds_from_sphere_zero_centre(self) -> None:
@@ -368,8 +402,12 @@ class TestCollideRewind:
         assert info.contact_plane_valid and info.contact_plane_is_water
         assert info.contact_plane.d == pytest.approx(-2.0, abs=1e-9)
         assert info.contact_plane_cell_id == CELL
-        assert path.walk_interp == pytest.approx(5 / 6, abs=1e-9)
-        assert origin(path).z == pytest.approx(2.0, abs=1e-9)
+        # float32: the check centre z is f32(1.8f + 0.5) = 2.29999995, movement.z the Vector3
+        # f32(3.5 - 2.29999995); interp is (1 - t) stored into the float walk_interp (362232).
+        center_z = f32(f32(1.8) + 0.5)
+        t = (2.0 + 0.5 - center_z) / f32(3.5 - center_z)
+        assert path.walk_interp == f32((1.0 - t) * 1.0) == pytest.approx(5 / 6, abs=1e-6)
+        assert origin(path).z == pytest.approx(2.0, abs=1e-6)
 
     def test_side_hit_after_collide_is_ok(self) -> None:
         # movement (1.3,0,0.2): t = 1.2/0.2 = 6 puts it 9 m out: radsum² < ... -> OK
@@ -404,9 +442,10 @@ class TestPlaced:
         # cache_localspace_sphere(p, 1.0) ran first (acclient.c:362258): the spheres in the owner's frame.
         assert path.localspace_pos.objcell_id == EAST_CELL
         # (3.4,0,.5) from CELL's block is (3.4 - 192, 0, .5) from the east block: local x = 3.4 - 192 + 190.
-        assert close(path.localspace_sphere[0].center, Vector3(1.4, 0, 0.5), 1e-9)
-        assert close(path.localspace_curr_center[0], Vector3(3.0, 0, 0.5), 1e-9)
-        assert close(path.localspace_low_point, Vector3(1.4, 0, 0.0), 1e-9)
+        # float32 tolerance: the point passes through x = -188.6 as a float32 (ulp 1.5e-5).
+        assert close(path.localspace_sphere[0].center, Vector3(1.4, 0, 0.5), 2e-5)
+        assert close(path.localspace_curr_center[0], Vector3(3.0, 0, 0.5), 2e-5)
+        assert close(path.localspace_low_point, Vector3(1.4, 0, 0.0), 2e-5)
         assert close(path.localspace_z, Vector3(0, 0, 1))
 
     def test_rotated_owner_localspace(self) -> None:
@@ -416,5 +455,6 @@ class TestPlaced:
         path.insert_type = InsertType.PLACEMENT
         owner = Position(CELL, Frame.from_heading(Vector3(), 90.0))
         assert CylSphere(Vector3(), 1.0, 2.0).intersects_sphere_placed(owner, 1.0, Sweep(path)) == TS.OK
-        assert close(path.localspace_sphere[0].center, Vector3(0, 3.4, 0.5), 1e-9)
+        # float32 tolerance: the heading-90 frame's matrix is float32 (cos 90° is not 0 there).
+        assert close(path.localspace_sphere[0].center, Vector3(0, 3.4, 0.5), 1e-6)
         assert close(path.localspace_z, Vector3(0, 0, 1), 1e-9)

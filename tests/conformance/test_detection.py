@@ -16,6 +16,7 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.world.world import World
 from support import LANDBLOCK, place
@@ -240,7 +241,7 @@ def test_global_cylinder_reports_a_body_crossing_its_cells(
     # cells at t = 8.5 (x = 120) is reported Left at t = 9 (327432-327435).
     assert statuses(manager) == [(4.0, ENTERED), (9.0, LEFT)]
     assert [object_id for _, _, object_id, _ in manager.reports] == [walker.id, walker.id]
-    assert manager.detection_objects == {}
+    assert len(manager.detection_objects) == 0
     # No radius test per object: entering the watched cell 23.8 m from the watcher is enough.
     assert watcher.position.get_offset(position_of(entered_at)).length() > 20.0
 
@@ -255,10 +256,10 @@ def test_an_entered_then_left_object_is_never_reported(
     _, manager = lookout
     check_at(manager, 1.0)  # initializes (acclient.c:327331)
     visitor = prop(world, 100.0, 100.0, 0.5)  # enters a watched cell: Entered pending
-    assert manager.detection_objects[visitor.id].object_status == ENTERED
+    assert manager.detection_objects.lookup(visitor.id).object_status == ENTERED
     visitor.leave_world()
     # Left on a pending Entered drops the object (acclient.c:327278-327284).
-    assert manager.detection_objects == {}
+    assert len(manager.detection_objects) == 0
     check_at(manager, 2.0)
     assert manager.reports == []
 
@@ -273,10 +274,10 @@ def test_voyeurs_are_reference_counted(world: World, lookout: tuple[PhysicsObj, 
     assert cell.add_voyeur(watcher.id, detcyl) is True
     assert cell.add_voyeur(watcher.id, detcyl) is True  # ... a known one only counts (347456-347461)
     assert cell.voyeur_table[watcher.id].ref_count == 2
-    assert manager.detection_objects[far.id].object_status == ENTERED
+    assert manager.detection_objects.lookup(far.id).object_status == ENTERED
     check_at(manager, 2.0)
     assert cell.remove_voyeur(watcher.id, detcyl) is True  # 2 -> 1: kept, nobody told (347549-347554)
-    assert manager.detection_objects[far.id].object_status == DetectionType.NO_CHANGE
+    assert manager.detection_objects.lookup(far.id).object_status == DetectionType.NO_CHANGE
     assert cell.remove_voyeur(watcher.id, detcyl) is True  # 1 -> 0: gone, Left for each object (347528)
     assert watcher.id not in cell.voyeur_table
     assert cell.remove_voyeur(watcher.id, detcyl) is False
@@ -299,7 +300,7 @@ def test_hiding_reports_left_and_unhiding_entered(
     assert statuses(manager) == [(2.0, ENTERED), (3.0, LEFT), (4.0, ENTERED)]
     # A hidden object entering a watched cell is not reported (add_object, acclient.c:347730).
     ghost = place(world, name="ghost", spheres=False, state=PhysicsState.HIDDEN, origin=(100.0, 90.0, 50.0))
-    assert ghost.id not in manager.detection_objects
+    assert manager.detection_objects.lookup(ghost.id) is None
 
 
 def test_moving_five_metres_remakes_the_cell_list(
@@ -309,7 +310,8 @@ def test_moving_five_metres_remakes_the_cell_list(
     check_at(manager, 1.0)
     west = prop(world, 80.0, 80.0, 0.5)  # in a cell the list will drop
     check_at(manager, 2.0)
-    watcher.position.frame.origin.x = 100.9  # 4.9 m: Position::distance < 5, no change (acclient.c:327342)
+    # 4.9 m: Position::distance < 5, no change (acclient.c:327344).
+    watcher.position.frame.origin.x = f32(100.9)
     check_at(manager, 3.0)
     assert cell_at(80.0, 80.0) in manager.cell_array.cell_ids()
     watcher.position.frame.origin.x = 107.0  # 11 m: remade around (107, 96): x 97..117 -> cells 96..120 only
@@ -351,4 +353,4 @@ def test_a_detection_report_wakes_the_body(
     # was inactive (acclient.c:317660-317668).
     assert watcher.transient_state & TransientState.ACTIVE
     assert watcher.update_time == 7.5
-    assert manager.detection_objects[12345].object_status == ENTERED
+    assert manager.detection_objects.lookup(12345).object_status == ENTERED

@@ -15,6 +15,7 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.motion.commands import RUN_FORWARD
+from acphys.precision import f32
 from support import LANDBLOCK, place
 
 DT = 1.0 / 30.0
@@ -45,8 +46,11 @@ class TestGlide:
         start_x = body.position.frame.origin.x
         body.update_object_internal(DT)
         # No weenie: adjusted max speed = 1.0 * 4 (acclient.c:343511); doubled (389237) = 8 m/s,
-        # the step cut to 8 * quantum (389255, 389260-389263).
-        assert body.position.frame.origin.x - start_x == pytest.approx(8.0 * DT, abs=1e-9)
+        # the step cut to 8 * quantum (389255, 389260-389263): the float locals give the step
+        # f32(3 * f32(f32(8 * DT) / 3)) along x, and the body's float32 origin takes it at x = 40.
+        step = f32(3.0 * f32(f32(8.0 * DT) / 3.0))
+        assert body.position.frame.origin.x - start_x == f32(start_x + step) - start_x
+        assert step == pytest.approx(8.0 * DT, abs=1e-7)
         assert body.is_interpolating()
 
     def test_the_glide_completes_within_5cm_and_the_queue_empties(self, body):
@@ -82,8 +86,10 @@ class TestGlide:
         offset = Frame()
         offset.origin.set(Vector3(0.0, 0.5, 0.0))  # root motion the glide discards
         body.position_manager.adjust_offset(offset, DT)
-        assert offset.origin.x == pytest.approx(8.0 * DT, abs=1e-9)
-        assert offset.origin.y == pytest.approx(0.0, abs=1e-9)
+        # The 3-m adjustment cut to the step: progress_madea = f32(8 * DT), the scale
+        # _rhs = f32(progress_madea / 3) and the origin f32(3 * _rhs) (acclient.c:389255-389263).
+        assert offset.origin.x == f32(3.0 * f32(f32(8.0 * DT) / 3.0))
+        assert offset.origin.y == 0.0
 
     def test_an_airborne_body_is_not_pulled(self, body):
         # adjust_offset returns without CONTACT (acclient.c:389208-389209).
@@ -100,7 +106,8 @@ class TestHeading:
         # only its origin is cut to the step.
         body.interpolate_to(_server_position(body, 3.0, heading=90.0), False)
         body.update_object_internal(DT)
-        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
+        # The heading is read back from a float32 quaternion: within 1e-5 degrees.
+        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=1e-5)
 
     def test_keep_heading_keeps_the_body_facing_as_it_was(self, body):
         # The node takes the body's heading (389112-389115) and the adjustment's heading is
@@ -116,7 +123,8 @@ class TestHeading:
         # (acclient.c:389131-389136); nothing is queued.
         body.interpolate_to(_server_position(body, 0.03, heading=45.0), False)
         assert not body.is_interpolating()
-        assert body.position.frame.get_heading() == pytest.approx(45.0, abs=1e-6)
+        # The heading is read back from a float32 quaternion: within 1e-5 degrees.
+        assert body.position.frame.get_heading() == pytest.approx(45.0, abs=1e-5)
 
 
 class TestQueue:

@@ -35,8 +35,16 @@ from acphys.scenario.motion_tables import builtin_motion_table
 from support import LANDBLOCK, place
 
 GROUND = 50.0
-#: Where the human's origin rests on that ground: sphere 0's bottom on the plane.
-REST = GROUND + (0.48 - 0.475)
+#: Where the human's origin rests on that ground: sphere 0's bottom on the plane (a float32, as
+#: every position coordinate is).
+REST = f32(GROUND + (0.48 - 0.475))
+#: The float32 spacing of coordinates in [64, 128) m: a body near 96 m moves in steps of this.
+ULP_96 = 2.0**-17
+#: Headings come from float32 quaternions: one rounding of the components is ~1e-7 rad (6e-6 degrees).
+HEADING_F32 = 1e-5
+#: One root-motion frame of the 4 m/s run at 30 fps, as the sequence stores it: the step spilled to
+#: float ``w.y`` and added to the float offset origin (CSequence::apply_physics, acclient.c:339877-339880).
+RUN_FRAME = f32(f32((1.0 / 30.0) * 4.0) + 0.0)
 #: 90 degrees per second, clockwise seen from above: TurnRight.
 TURN_RATE = math.pi / 2.0
 
@@ -95,22 +103,25 @@ class TestRootMotion:
         body = _walker(ground)
         assert body.do_motion(cmd.RUN_FORWARD, _params()) == 0
         _advance(ground, body, 0.05)
-        # frame_number 0 -> 30 · 0.05 = 1.5: one boundary, one 1/30-s application of 4 m/s.
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0 / 30.0, abs=1e-12)
+        # frame_number 0 -> 30 · 0.05 = 1.5: one boundary, one 1/30-s application of 4 m/s; the body's
+        # frame then takes the offset (Frame::combine, acclient.c:319448) into its float origin.
+        assert body.position.frame.origin.y == f32(96.0 + RUN_FRAME)
         assert body.position.frame.origin.x == 96.0
         assert body.position.frame.origin.z == pytest.approx(REST, abs=1e-9)
         # Root motion never touches m_velocityVector; cached_velocity is the displacement over the
         # (float32) quantum (UpdateObjectInternal, acclient.c:322718).
         assert body.velocity.exactly_equals(Vector3())
-        assert body.cached_velocity.y == pytest.approx((4.0 / 30.0) / f32(0.05), abs=1e-9)
+        displacement = body.position.frame.origin.y - 96.0
+        assert body.cached_velocity.y == pytest.approx(displacement / f32(0.05), rel=1e-7)
 
     def test_one_second_of_running_is_four_metres(self, ground):
         body = _walker(ground)
         body.do_motion(cmd.RUN_FORWARD, _params())
         _advance(ground, body, 1.0)
         # 20 quanta of f32(0.05): frame_number reaches 30.0000004, so 29 in-cycle boundaries plus
-        # the wrap's entry frame (advance_to_next_animation, acclient.c:340472): 30 × 4/30.
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0, abs=1e-9)
+        # the wrap's entry frame (advance_to_next_animation, acclient.c:340472): 30 × 4/30. Each of the
+        # 20 steps stores the body's y as a float32 near 96 m: at most half an ULP_96 off per step.
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0, abs=20 * ULP_96 / 2)
         assert body.velocity.exactly_equals(Vector3())
 
     def test_displacement_comes_only_at_frame_boundaries(self, ground):
@@ -121,7 +132,8 @@ class TestRootMotion:
             before = body.position.frame.origin.y
             ground.cur_time = k * 0.05
             body.update_object()
-            steps.append(round((body.position.frame.origin.y - before) * 30.0 / 4.0, 9))
+            # The float32 position near 96 m rounds each step by up to ULP_96 / 2: a few 1e-5 frames.
+            steps.append(round((body.position.frame.origin.y - before) * 30.0 / 4.0, 3))
         # 1.5 frames per quantum: boundaries alternate 1, 2, 1, 2, ... (floor(1.5 k) - floor(1.5 (k-1))).
         assert steps == [1.0, 2.0] * 5
 
@@ -129,17 +141,19 @@ class TestRootMotion:
         body = _walker(ground, heading=90.0)
         body.do_motion(cmd.RUN_FORWARD, _params())
         _advance(ground, body, 0.05)
-        # Frame::combine rotates the body-local +y into the heading: east, +x.
-        assert body.position.frame.origin.x - 96.0 == pytest.approx(4.0 / 30.0, abs=1e-9)
-        assert body.position.frame.origin.y == pytest.approx(96.0, abs=1e-9)
+        # Frame::combine rotates the body-local +y into the heading: east, +x. The heading's float32
+        # matrix and the float32 origin near 96 m make that exact to about one ULP_96.
+        assert body.position.frame.origin.x - 96.0 == pytest.approx(4.0 / 30.0, abs=ULP_96)
+        assert body.position.frame.origin.y == pytest.approx(96.0, abs=ULP_96)
 
     def test_root_motion_is_scaled_by_the_body_scale_on_walkable_ground(self, ground):
         body = _walker(ground)
         body.set_scale_static(2.0)
         body.do_motion(cmd.RUN_FORWARD, _params())
         _advance(ground, body, 0.05)
-        # offset origin × m_scale on ON_WALKABLE (UpdatePositionInternal, acclient.c:319988).
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(2.0 * 4.0 / 30.0, abs=1e-12)
+        # offset origin × m_scale on ON_WALKABLE (UpdatePositionInternal, acclient.c:319988): the
+        # float32 run frame doubled (exact), then added to the body's float origin.
+        assert body.position.frame.origin.y == f32(96.0 + 2.0 * RUN_FRAME)
 
     def test_no_translation_off_walkable_ground_but_rotation_applies(self, ground):
         # No gravity and no contact: the offset origin is multiplied by 0, its rotation is kept.
@@ -148,7 +162,7 @@ class TestRootMotion:
         body.part_array.sequence.set_velocity(Vector3(0.0, 4.0, 0.0))
         _advance(ground, body, 0.05)
         assert body.position.frame.origin.exactly_equals(Vector3(96.0, 96.0, 60.0))
-        assert body.position.frame.get_heading() == pytest.approx(3.0, abs=1e-9)
+        assert body.position.frame.get_heading() == pytest.approx(3.0, abs=HEADING_F32)
 
     def test_a_hidden_body_gets_no_root_motion_at_all(self, ground):
         body = _walker(ground)
@@ -169,15 +183,16 @@ class TestTurning:
         assert body.do_motion(cmd.TURN_RIGHT, _params()) == 0
         _advance(ground, body, 0.05)
         # One boundary: rotate by omega/30 = 3 degrees clockwise (compass heading grows).
-        assert body.position.frame.get_heading() == pytest.approx(3.0, abs=1e-9)
+        assert body.position.frame.get_heading() == pytest.approx(3.0, abs=HEADING_F32)
         _advance(ground, body, 0.05)
-        assert body.position.frame.get_heading() == pytest.approx(9.0, abs=1e-9)
+        assert body.position.frame.get_heading() == pytest.approx(9.0, abs=HEADING_F32)
 
     def test_a_second_of_turning_right_is_ninety_degrees(self, ground):
         body = _walker(ground)
         body.do_motion(cmd.TURN_RIGHT, _params())
         _advance(ground, body, 1.0)
-        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
+        # 30 float32 rotations: up to 30 roundings of the quaternion.
+        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=30 * HEADING_F32)
         assert body.position.frame.origin == Vector3(96.0, 96.0, REST)
 
     def test_turn_left_is_turn_right_with_negated_speed(self, ground):
@@ -189,9 +204,9 @@ class TestTurning:
         # The cycle plays backwards from high + 1 - F_EPSILON = 29.9998: frame -1.5 crosses one
         # boundary going down, which applies -1/30 s of omega: 3 degrees anticlockwise.
         _advance(ground, body, 0.05)
-        assert body.position.frame.get_heading() == pytest.approx(357.0, abs=1e-9)
+        assert body.position.frame.get_heading() == pytest.approx(357.0, abs=HEADING_F32)
         _advance(ground, body, 0.05)
-        assert body.position.frame.get_heading() == pytest.approx(351.0, abs=1e-9)
+        assert body.position.frame.get_heading() == pytest.approx(351.0, abs=HEADING_F32)
 
 
 class TestWalking:
@@ -208,13 +223,13 @@ class TestWalking:
         _advance(ground, body, 0.05)
         assert body.position.frame.origin.y == 96.0
         # The second reaches 28.05: one boundary, apply_physics(1/19.5 s) of -2.028 m/s, which is one
-        # frame of walking (3.12/30 m) backwards.
+        # frame of walking (3.12/30 m) backwards, to the float32 rounding of the body's y near 96 m.
         _advance(ground, body, 0.05)
         frame_of_walking = 3.12 / 30.0
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(-frame_of_walking, abs=1e-9)
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(-frame_of_walking, abs=ULP_96)
         # After a second: 29.9998 - 19.5 = 10.4998, 19 boundaries.
         _advance(ground, body, 0.9)
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(-19 * frame_of_walking, abs=1e-6)
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(-19 * frame_of_walking, abs=19 * ULP_96)
 
     def test_hold_run_turns_walking_into_running_at_the_run_rate(self, ground):
         body = _walker(ground)
@@ -225,7 +240,7 @@ class TestWalking:
         assert state.forward_command == cmd.RUN_FORWARD
         assert state.forward_speed == 1.0
         _advance(ground, body, 1.0)
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0, abs=1e-9)
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(4.0, abs=20 * ULP_96 / 2)
 
 
 class TestLinksAndCompletion:
@@ -245,7 +260,7 @@ class TestLinksAndCompletion:
         _advance(ground, body, 0.1)
         # frame_number 3.0: still in the link (high frame 3); the sequence velocity applies throughout.
         assert body.motions_pending()
-        assert body.position.frame.origin.y - 96.0 == pytest.approx(3 * f32(3.12) / 30.0, abs=1e-6)
+        assert body.position.frame.origin.y - 96.0 == pytest.approx(3 * f32(3.12) / 30.0, abs=3 * ULP_96)
         _advance(ground, body, 0.05)
         # 4.5 overruns the link: AnimDone fires, the manager completes WalkForward, apricot drops the link.
         assert not body.motions_pending()
@@ -326,5 +341,6 @@ class TestMoveToAndTurnTo:
         assert body.is_moving_to()
         _advance(ground, body, 2.0)
         assert not body.is_moving_to()
-        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
+        # Snapped to the node's heading (set_heading, HandleTurnToHeading), a float32 quaternion.
+        assert body.position.frame.get_heading() == pytest.approx(90.0, abs=HEADING_F32)
         assert body.get_minterp().interpreted_state.turn_command == 0

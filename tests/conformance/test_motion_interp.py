@@ -536,6 +536,56 @@ class TestHoldRun:
         m.set_hold_run(False)  # already NONE (acclient.c:344494)
         assert m.interpreted_state.forward_command == WALK_FORWARD
 
+    def test_an_invalid_hold_key_keeps_the_run_key_and_a_walk_stop_stops_the_run(self, world: World) -> None:
+        # The keyboard path (CommandInterpreter::MovePlayer, acclient.c:717799) sends DoMotion and
+        # StopMotion with the default parameters and hold_key_to_apply HoldKey_Invalid.
+        body = body_with_table(world)
+        m = body.get_minterp()
+        m.set_hold_run(True)
+        assert body.do_motion(WALK_FORWARD, MovementParameters()) == 0
+        # SetHoldKey(Invalid) changes nothing (acclient.c:344501-344522, called at 344637); adjust_motion
+        # with an invalid key takes the current one, RUN (acclient.c:343796-343802): WalkForward runs.
+        assert m.raw_state.current_holdkey == HoldKey.RUN
+        assert m.interpreted_state.forward_command == RUN_FORWARD
+        assert table_state(body).substate == RUN_FORWARD
+        # StopMotion adjusts the stop the same way (acclient.c:344128): it stops RunForward.
+        assert body.stop_motion(WALK_FORWARD, MovementParameters()) == 0
+        assert table_state(body).substate == READY
+        assert m.raw_state.forward_command == READY
+        assert m.raw_state.current_holdkey == HoldKey.RUN
+
+    def test_a_walk_stop_released_from_the_run_key_misses_the_run(self, world: World) -> None:
+        body = body_with_table(world)
+        body.do_motion(WALK_FORWARD, MovementParameters(hold_key_to_apply=HoldKey.RUN))
+        # HoldKey_None: the stop stays a WalkForward stop, which the table cannot find while the
+        # substate is RunForward (StopSequenceMotion, acclient.c:337911): 0x43.
+        stop = MovementParameters(hold_key_to_apply=HoldKey.NONE)
+        assert body.stop_motion(WALK_FORWARD, stop) == MovementError.NO_MTABLE_DATA
+        assert table_state(body).substate == RUN_FORWARD
+
+
+class TestPlayerOrCreature:
+    """apply_current_movement (acclient.c:344300-344314): the player (or a body without a weenie)
+    moving autonomously replays its raw state; any other creature its interpreted state."""
+
+    @pytest.mark.parametrize(
+        ("weenie", "replayed"), [(Weenie(the_player=False), RUN_FORWARD), (Weenie(), READY)]
+    )
+    def test_landing_replays_interpreted_for_a_creature_and_raw_for_the_player(
+        self, world: World, weenie: Weenie, replayed: int
+    ) -> None:
+        body = body_with_table(world, on_ground=False, weenie=weenie)
+        m = body.get_minterp()
+        body.last_move_was_autonomous = True
+        # An interpreted state the raw one does not hold (as move_to_interpreted_state leaves it).
+        m.interpreted_state.forward_command, m.interpreted_state.forward_speed = RUN_FORWARD, 1.0
+        body.transient_state |= TS.CONTACT
+        body.set_on_walkable(True)
+        m.hit_ground()
+        # HitGround: a creature (IsCreature) with gravity replays (acclient.c:344440-344449); the
+        # player's raw state says Ready, the creature's interpreted state RunForward.
+        assert table_state(body).substate == replayed
+
 
 class TestStops:
     def test_stop_motion_clears_raw_and_interpreted(self, world: World) -> None:

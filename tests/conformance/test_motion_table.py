@@ -35,6 +35,7 @@ from acphys.motion.motion_table import (
     same_sign,
 )
 from acphys.motion.sequence import Sequence
+from acphys.precision import f32
 
 CHEER = MOTION_IDS["Cheer"]  # 0x1300004C: an action
 
@@ -235,10 +236,13 @@ def test_negative_speed_goes_via_the_default_with_the_reversed_link() -> None:
     # (acclient.c:337633), played at the old speed 1.0; get_link(Ready, 1.0, Walk, -0.65) has a
     # negative speed and reverses the lookup to links[Walk][Ready] (acclient.c:337597-337606).
     assert names(seq) == ["any_ready", "walk_ready", "walk"]
-    assert rates(seq) == [30.0, 30.0 * -0.65, 30.0 * -0.65]  # acclient.c:337799-337800, 337810
-    assert seq.velocity.exactly_equals(WALK_V * -0.65)
+    # speed_mod is a float parameter, and each framerate the float store of 30 * f32(-0.65)
+    # (operator*, acclient.c:341061-341064).
+    speed = f32(-0.65)
+    assert rates(seq) == [30.0, f32(30.0 * speed), f32(30.0 * speed)]  # acclient.c:337799-337800, 337810
+    assert seq.velocity.exactly_equals(WALK_V * speed)
     assert num_anims == 2  # 1 + 1 + 1 - 1 (acclient.c:337835)
-    assert state.substate_mod == -0.65
+    assert state.substate_mod == speed  # the float field takes the float parameter (acclient.c:337824)
 
 
 def test_get_link_forward_reversed_and_fallbacks() -> None:

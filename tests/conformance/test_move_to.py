@@ -45,6 +45,7 @@ from acphys.motion.movement import (
     MovementType,
 )
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.world.world import World
 from support import LANDBLOCK, place
 
@@ -396,9 +397,10 @@ def test_walks_to_a_point_and_stops(walker: PhysicsObj) -> None:
     # ground: OBJECTINFO::validate_walkable, acclient.c:314275): the last tick's 0.104 m shortens the
     # horizontal part of the 3-D distance.
     dz = walker.position.frame.origin.z - 50.0
-    assert dz == pytest.approx(0.005, abs=1e-9)
+    assert dz == f32(50.0 + 0.005) - 50.0  # the float32 origin z
     flat = math.sqrt(distances[-2] ** 2 - dz * dz)
-    assert distances[-1] == pytest.approx(math.hypot(flat - 3.12 / 30.0, dz))
+    # Positions near 100 m are float32 (spacing 2^-17 = 7.6 µm): the distances agree to about that.
+    assert distances[-1] == pytest.approx(math.hypot(flat - 3.12 / 30.0, dz), abs=2.0**-17)
     assert m.movement_type == MovementType.INVALID and m.pending_actions == []
     assert walker.movement_manager.motion_interpreter.interpreted_state.forward_command == READY
     resting = walker.position.frame.origin.copy()
@@ -543,7 +545,8 @@ class TestTurnToHeading:
                 break
         # heading_greater -> set_heading(node heading), stop the turn, next node (acclient.c:345740-345748).
         assert not m.is_moving_to()
-        assert walker.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
+        # The heading of the float32 quaternion set_heading(90) stores: within 1e-5 degrees.
+        assert walker.position.frame.get_heading() == pytest.approx(90.0, abs=1e-5)
         assert walker.movement_manager.motion_interpreter.interpreted_state.turn_command == 0
 
     def test_more_than_180_turns_left(self, walker: PhysicsObj) -> None:
@@ -672,7 +675,9 @@ class TestMoveToObject:
         m.handle_move_to_position()
         assert not m.is_moving_to()
         assert tracked.target_manager.calls[-1] == ("clear_target",)
-        assert tracked.position_manager.calls[-1] == ("stick_to", self.TARGET, 0.4, 1.5)
+        # The radius and height travel as float fields (sought_object_radius/height, the float locals
+        # old_object_radius/height, acclient.c:345557-345565).
+        assert tracked.position_manager.calls[-1] == ("stick_to", self.TARGET, f32(0.4), f32(1.5))
 
     def test_retunes_the_target_quantum(self, tracked: PhysicsObj) -> None:
         # Tracking and |v| = 2 > 0.1: time = dist / |v| with dist the cylinder distance, 5 m less the

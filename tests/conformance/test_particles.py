@@ -26,6 +26,7 @@ from acphys.managers.scripts import PhysicsScript, register_script, unregister_s
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 from acphys.motion.anim_hooks import CreateParticleHook, StopParticleHook
+from acphys.precision import f32
 
 INFO = 0x32000001
 SCRIPT = 0x33000201
@@ -100,10 +101,16 @@ class TestClosedForm:
         ((_, part),) = emitter.live_particles()
         _tick(world, body, 5.5)
         # origin + offset + t·a + ½·t²·b, a local → (2, 0, 0) global, b global as given
-        # (Init acclient.c:330703-330718, Update 330383-330410).
-        assert part.frame.origin.x == pytest.approx(96.0 + 2.0 * 0.5, abs=1e-12)
-        assert part.frame.origin.y == pytest.approx(96.0, abs=1e-12)
-        assert part.frame.origin.z == pytest.approx(50.0 - 0.5 * 9.8 * 0.25, abs=1e-12)
+        # (Init acclient.c:330703-330718, Update 330435-330465).
+        a = emitter.particles[0].a
+        assert a.x == pytest.approx(2.0, abs=1e-6) and a.y == pytest.approx(0.0, abs=1e-6)
+        # With t = 0.5 (exact) and the float spills of case 3: x = f32(t·a.x + (o.x + p.x) + sx)
+        # with sx = f32(f32(0.5·b.x)·t·f32(t)) = 0; y = f32(f32(f32(o.y + p.y) + f32(t·a.y)) + 0);
+        # z = f32(f32(f32(o.z + p.z) + f32(t·a.z)) + f32(f32(0.5·b.z·t)·f32(t))), b.z = f32(-9.8).
+        assert part.frame.origin.x == f32(0.5 * a.x + (0.0 + 96.0))
+        assert part.frame.origin.y == f32(f32(96.0 + f32(0.5 * a.y)))
+        assert part.frame.origin.z == f32(50.0 + f32(f32(f32(-9.8) * 0.5 * 0.5) * 0.5))
+        assert part.frame.origin.z == pytest.approx(50.0 - 0.5 * 9.8 * 0.25, abs=1e-5)
 
     def test_swarm_weights_each_wave_by_c(self, world):
         # Update case 5: cos(b.x t)·c.x + t·a.x + offset + parent (acclient.c:330443-330453).
@@ -116,10 +123,12 @@ class TestClosedForm:
         ((_, part),) = emitter.live_particles()
         assert part.frame.origin == Vector3(96.5, 96.0, 52.0)  # t = 0: (c.x, 0, c.z)
         _tick(world, body, 5.4)
-        t = 0.4
-        assert part.frame.origin.x == pytest.approx(96.0 + 0.5 * math.cos(1.0 * t), abs=1e-12)
-        assert part.frame.origin.y == pytest.approx(96.0 + 0.25 * math.sin(2.0 * t), abs=1e-12)
-        assert part.frame.origin.z == pytest.approx(50.0 + 2.0 * math.cos(3.0 * t), abs=1e-12)
+        # The lifetime is the double 5.4 - 5.0; each axis is summed in registers and stored once.
+        t = 5.4 - 5.0
+        assert part.frame.origin.x == f32(math.cos(1.0 * t) * 0.5 + t * 0.0 + 0.0 + 96.0)
+        assert part.frame.origin.y == f32(math.sin(2.0 * t) * 0.25 + t * 0.0 + 0.0 + 96.0)
+        assert part.frame.origin.z == f32(math.cos(3.0 * t) * 2.0 + t * 0.0 + 0.0 + 50.0)
+        assert part.frame.origin.x == pytest.approx(96.0 + 0.5 * math.cos(1.0 * 0.4), abs=1e-5)
 
     def test_global_velocity_ignores_the_heading(self, world):
         body = place(world, state=PS(0), heading=90.0)
@@ -282,5 +291,6 @@ class TestScriptedEffect:
         born = trace[0][0]
         assert born == pytest.approx(0.2, abs=1e-9)
         for t, y in trace:
-            assert y == pytest.approx(96.0 + (t - born), abs=1e-9)
+            # Update case 2: y = f32(f32(offset.y + parent.y) + f32(t·a.y)) (acclient.c:330418-330434).
+            assert y == f32(96.0 + f32(t - born))
         assert trace[-1][0] - born < 0.5

@@ -3,7 +3,8 @@
 Retail: FPHook::Execute @ 0x0051BAA0 (acclient.c:329694), CPhysicsObj::process_fp_hook
 (acclient.c:320571), SetTranslucency (318693), SetTranslucency2 (316920),
 SetTranslucencyInternal (316802), SetPart*/SetLuminosity/SetDiffusion (318758-318894),
-the look hooks' Execute (acclient.c:342341-342461).
+the look hooks' Execute (acclient.c:342341-342461). FPHook's start and end values are
+``float`` fields and Execute's fraction and value ``float`` (acclient.c:329705-329713).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from tests.support import place
 from acphys.flags import PhysicsState as PS
 from acphys.hooks import HookType
 from acphys.motion.anim_hooks import LuminousPartHook, ScaleHook, TransparentHook
+from acphys.precision import f32
 
 TICK = 1.0 / 30.0
 
@@ -35,19 +37,25 @@ class TestTranslucency:
         body.set_translucency(0.8, 1.0)
         world.physics_time = 2.5
         body.process_hooks()
-        assert body.translucency == pytest.approx(0.4, abs=1e-12)
+        # (end - 0.0) · fraction 0.5 + 0.0, with end the float32 0.8.
+        assert body.translucency == f32((f32(0.8) - 0.0) * 0.5 + 0.0)
+        assert body.translucency == pytest.approx(0.4, abs=1e-7)
 
     def test_translucency_reaches_its_end_value_at_the_end_time_and_the_hook_goes(self, world):
         body = place(world, state=PS(0))
         body.update_time = world.cur_time = world.physics_time = 1.0
         body.set_translucency2(0.2, 0.9, 0.5)
         _run(world, body, 1.3)
-        # FPHook::Execute: value = (end - start) * (elapsed / delta) + start (acclient.c:329699-329709).
-        assert body.translucency == pytest.approx(0.2 + 0.7 * (0.3 / 0.5), abs=1e-9)
+        # FPHook::Execute: value = (end - start) * (elapsed / delta) + start, the fraction and the
+        # value stored as floats (acclient.c:329705-329713); elapsed is the double physics timer's.
+        fraction = f32((world.physics_time - 1.0) / 0.5)
+        assert body.translucency == f32((f32(0.9) - f32(0.2)) * fraction + f32(0.2))
+        assert body.translucency == pytest.approx(0.2 + 0.7 * (0.3 / 0.5), abs=1e-6)
         assert len(body.hooks) == 1
         _run(world, body, 1.5)
-        # The fraction clamps to exactly 1.0 (acclient.c:329704): (0.9 - 0.2) * 1 + 0.2.
-        assert body.translucency == pytest.approx(0.9, abs=1e-15)
+        # The fraction clamps to exactly 1.0 (acclient.c:329707): (0.9 - 0.2) * 1 + 0.2 is the
+        # float32 0.9 again.
+        assert body.translucency == f32(0.9)
         assert body.hooks == []  # Execute returns fraction == 1 → unlinked (acclient.c:318656-318670)
 
     def test_translucency_never_drops_below_the_original(self, world):
@@ -86,6 +94,12 @@ class TestScale:
         _run(world, body, TICK + 0.6)
         assert body.scale == 2.5
         assert body.part_array.scale == 2.5  # SetScaleStatic reaches the part array
+        # The hook's 0.6 s is the float32 0.60000002 (ScaleHook's time is a float): at elapsed 0.6
+        # the float fraction is 0.99999994, whose value already rounds to 2.5, but Execute only
+        # reports the end for a fraction of exactly 1 (acclient.c:329707-329715): one tick later.
+        assert len(body.hooks) == 1
+        _run(world, body, 2 * TICK + 0.6)
+        assert body.scale == 2.5
         assert body.hooks == []
 
 
@@ -105,8 +119,8 @@ class TestPartLooks:
         (hook,) = body.hooks
         assert (hook.hook_type, hook.start_value, hook.end_value, hook.user_data) == (
             HookType.DIFFUSION,
-            0.2,
-            0.4,
+            f32(0.2),
+            f32(0.4),
             0,
         )
         world.physics_time += 0.5

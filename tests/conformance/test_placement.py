@@ -19,6 +19,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3 as V
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj, SetPositionError, SetPositionFlags, SetPositionStruct
+from acphys.precision import f32
 from acphys.setup import human_setup
 from acphys.transition.placement import validate_placement, validate_placement_transition
 from acphys.transition.transition import Transition
@@ -147,7 +148,9 @@ class TestValidatePlacement:
         assert validate_placement(transit, TS.OK, False) == TS.OK
         assert path.curr_cell is cell
         assert path.curr_pos.frame.origin.z == 51.0
-        assert path.global_curr_center[0].z == 51.475
+        # cache_global_curr_center stores the centre as float: 51 + f32(0.475), narrowed
+        # (acclient.c:313732-313741).
+        assert path.global_curr_center[0].z == f32(51.0 + f32(0.475))
 
     def test_collided_is_passed_through(self, world: World) -> None:
         transit = self.transition(world)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import struct
 
 import pytest
 
@@ -11,8 +12,19 @@ from acphys.geometry.plane import Ray, Sidedness
 from acphys.geometry.polygon import Polygon, SidesType
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 UP = Vector3(0.0, 0.0, 1.0)
+
+#: The float32 just above 0.5 + EPSILON: the smallest float32 radius whose ``radius - EPSILON``
+#: reaches 0.5 (f32(0.5 + EPSILON) = 0.50019997 falls short: 0.50019997 - EPSILON = 0.49999997).
+R_REACHES_HALF = 0.5002000331878662
+
+
+def f32_neighbour(value: float, up: bool) -> float:
+    """The float32 next to the float32 ``value``, above or below (both positive)."""
+    step = struct.unpack("<I", struct.pack("<f", value))[0] + (1 if up else -1)
+    return struct.unpack("<f", struct.pack("<I", step))[0]
 
 
 def square(z: float = 0.0, sides: SidesType = SidesType.SINGLE) -> Polygon:
@@ -93,8 +105,12 @@ def test_sphere_exactly_touching_face_misses(method: str) -> None:
     # acclient.c:359953/360053 rad = 0.5 - EPSILON < |dist| 0.5: no hit, contact untouched
     assert getattr(poly, method)(Sphere(Vector3(0.5, 0.5, 0.5), 0.5), contact) is False
     assert contact.exactly_equals(Vector3(7.0, 7.0, 7.0))
-    # radius 0.5 + EPSILON: rad 0.5 >= 0.5, foot (0.5, 0.5, 0) inside every edge
-    assert getattr(poly, method)(Sphere(Vector3(0.5, 0.5, 0.5), 0.5 + EPSILON), contact) is True
+    # The radius is a float32 (CSphere::radius): 0.5 + EPSILON is stored as 0.50019997, whose
+    # rad = 0.50019997 - EPSILON = 0.49999997 < 0.5 still misses; the next float32 up reaches.
+    assert f32(0.5 + EPSILON) < R_REACHES_HALF and f32(0.5 + EPSILON) - EPSILON < 0.5
+    assert getattr(poly, method)(Sphere(Vector3(0.5, 0.5, 0.5), 0.5 + EPSILON), contact) is False
+    # rad 0.50000003 >= 0.5, foot (0.5, 0.5, 0) inside every edge
+    assert getattr(poly, method)(Sphere(Vector3(0.5, 0.5, 0.5), R_REACHES_HALF), contact) is True
     assert contact.exactly_equals(Vector3(0.5, 0.5, 0.0))
 
 
@@ -114,8 +130,8 @@ def test_sphere_beside_edge(method: str) -> None:
     assert getattr(poly, method)(Sphere(Vector3(1.3, 0.5, 0.0), 0.5), contact) is True
     # grazing at 1.5: dp**2 = 0.25 > (0.5 - EPSILON)**2 -> the lost compare returns 0 (359991)
     assert getattr(poly, method)(Sphere(Vector3(1.5, 0.5, 0.0), 0.5), contact) is False
-    # radius 0.5 + EPSILON: rad**2 = 0.25 = dp**2, in reach
-    assert getattr(poly, method)(Sphere(Vector3(1.5, 0.5, 0.0), 0.5 + EPSILON), contact) is True
+    # the smallest float32 radius with rad >= 0.5 (see R_REACHES_HALF): rad**2 >= 0.25 = dp**2, in reach
+    assert getattr(poly, method)(Sphere(Vector3(1.5, 0.5, 0.0), R_REACHES_HALF), contact) is True
 
 
 @pytest.mark.parametrize("method", ["polygon_hits_sphere", "polygon_hits_sphere_slow_but_sure"])
@@ -144,7 +160,8 @@ def test_hits_sphere_and_pos_hits_sphere() -> None:
 
 
 def _slope(nz: float) -> Polygon:
-    """A square through the origin whose normal is (sqrt(1 - nz**2), 0, nz), normal z set exactly."""
+    """A square through the origin whose normal is (sqrt(1 - nz**2), 0, nz), normal z set exactly
+    (``nz`` a float32, as a plane holds it)."""
     nx = math.sqrt(1.0 - nz * nz)
     slope = -nx / nz  # z = slope * x keeps nx*x + nz*z = 0
     pts = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
@@ -155,13 +172,14 @@ def _slope(nz: float) -> Polygon:
 
 def test_walkable_hits_sphere_floor_z_boundary() -> None:
     sphere = Sphere(Vector3(0.0, 0.0, 0.3), 0.5)
-    # acclient.c:360528 N·up > walkable_allowance, strict
+    # acclient.c:360528 N·up > walkable_allowance, strict; the float32 normals on either side
+    above, below = f32_neighbour(FLOOR_Z, up=True), f32_neighbour(FLOOR_Z, up=False)
     assert _slope(FLOOR_Z).walkable_hits_sphere(sphere, UP, FLOOR_Z) is False
-    assert _slope(math.nextafter(FLOOR_Z, 1.0)).walkable_hits_sphere(sphere, UP, FLOOR_Z) is True
-    assert _slope(math.nextafter(FLOOR_Z, 0.0)).walkable_hits_sphere(sphere, UP, FLOOR_Z) is False
+    assert _slope(above).walkable_hits_sphere(sphere, UP, FLOOR_Z) is True
+    assert _slope(below).walkable_hits_sphere(sphere, UP, FLOOR_Z) is False
     # steep enough but out of reach
     far = Sphere(Vector3(0.0, 0.0, 3.0), 0.5)
-    assert _slope(math.nextafter(FLOOR_Z, 1.0)).walkable_hits_sphere(far, UP, FLOOR_Z) is False
+    assert _slope(above).walkable_hits_sphere(far, UP, FLOOR_Z) is False
 
 
 # --- walkable checks --------------------------------------------------------------------
@@ -225,7 +243,8 @@ def test_adjust_sphere_to_plane_refusals() -> None:
     assert poly.adjust_sphere_to_plane(deep, Vector3(0.0, 0.0, -1.0), 1.0) == pytest.approx(-0.5)
     deeper = Sphere(Vector3(0.5, 0.5, -1.1), 0.5)
     assert poly.adjust_sphere_to_plane(deeper, Vector3(0.0, 0.0, -1.0), 1.0) is None  # interp -0.6
-    assert deeper.center.z == -1.1 and sphere.center.z == 0.2
+    # untouched: the centres are the float32 values they were built with
+    assert deeper.center.z == f32(-1.1) and sphere.center.z == f32(0.2)
 
 
 def test_adjust_to_placement_poly() -> None:

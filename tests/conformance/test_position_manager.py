@@ -16,6 +16,7 @@ from acphys.managers.position import PositionManager
 from acphys.managers.sticky import StickyManager
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from support import LANDBLOCK, place
 
 DT = 1.0 / 30.0
@@ -75,9 +76,11 @@ class TestOrder:
         body.constrain_to(_moved(body, 0.0, 11.0), 5.0, 20.0)  # scale (20 - 11) / 15 = 0.6
         offset = Frame()
         manager.adjust_offset(offset, DT)
-        # sticky: 20 m/s * DT north (acclient.c:388589), then * 0.6 (389493-389495).
-        assert offset.origin.x == pytest.approx(0.0, abs=1e-9)
-        assert offset.origin.y == pytest.approx(20.0 * DT * 0.6, abs=1e-9)
+        # sticky: 20 m/s * DT north, stored once (acclient.c:388589), then times the float scale
+        # f32(0.6) (389493-389495), stored again.
+        assert offset.origin.x == 0.0
+        assert offset.origin.y == f32(f32(20.0 * DT) * f32(9.0 / 15.0))
+        assert offset.origin.y == pytest.approx(20.0 * DT * 0.6, abs=1e-7)
 
 
 def _moved(body, dx: float, dy: float):

@@ -25,6 +25,7 @@ from acphys.managers.scripts import (
 )
 from acphys.motion.anim_hooks import AnimHook, CallPESHook, DefaultScriptHook
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.world.world import World
 from support import place
 
@@ -220,7 +221,7 @@ class TestCallPES:
             hook.user_data,
         ) == (
             HookType.CALL_PES,
-            0.4,
+            f32(0.4),  # the rolled pause is a float (acclient.c:318986-318987)
             0.0,
             1.0,
             SCRIPT_B,

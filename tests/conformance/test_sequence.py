@@ -26,6 +26,7 @@ from acphys.motion.anim_hooks import (
 )
 from acphys.motion.animation import F_EPSILON, Animation, AnimData, AnimFrame
 from acphys.motion.sequence import Sequence
+from acphys.precision import f32
 from support import place
 
 
@@ -57,8 +58,9 @@ class TestForwardVelocity:
         seq.update(0.05, offset)
         # frame_number 0 + 30 * 0.05 = 1.5 (acclient.c:340690-340695): boundary 0 crossed once.
         assert seq.frame_number == 1.5
-        # apply_physics(retval, 1/30, quantum) once (acclient.c:340723): |1/30| * 4.
-        assert offset.origin.y == (1.0 / 30.0) * 4.0
+        # apply_physics(retval, 1/30, quantum) once (acclient.c:340723): |1/30| * 4, spilled into
+        # the float local w.y (acclient.c:339877), then added to the float origin (339880).
+        assert offset.origin.y == f32(f32((1.0 / 30.0) * 4.0) + 0.0)
         assert offset.origin.x == 0.0 and offset.origin.z == 0.0
 
     def test_one_second_of_updates_moves_exactly_four_metres(self):
@@ -69,8 +71,13 @@ class TestForwardVelocity:
         # Updates 1-19 cross frames 0..27 (28 boundaries). Update 20 reaches 30.0 > high 29
         # (acclient.c:340700): clamped to 29, frame 28 crosses (340713), then the wrap enters
         # frame 0 of the cycle with one more frame of physics (advance_to_next_animation,
-        # acclient.c:340568-340582): 30 applications of 4/30 m.
-        assert offset.origin.y == pytest.approx(4.0, abs=1e-12)
+        # acclient.c:340568-340582): 30 applications of 4/30 m, each spilled to float w.y and
+        # added to the float origin (acclient.c:339877-339880): four metres to float32 rounding.
+        expected = 0.0
+        for _ in range(30):
+            expected = f32(f32((1.0 / 30.0) * 4.0) + expected)
+        assert offset.origin.y == expected
+        assert offset.origin.y == pytest.approx(4.0, abs=2e-6)
         # The leftover 30 - 29 - 1 = 0 frames give time_left 0 (acclient.c:340702-340708): a
         # zero quantum applies nothing (acclient.c:340778) and play sits at frame 0.
         assert seq.frame_number == 0.0
@@ -92,9 +99,14 @@ class TestForwardVelocity:
         assert offset.rotation == (1.0, 0.0, 0.0, 0.0)
         seq.update(0.2, offset)
         # 0.5 -> 2.5 crosses frames 0 and 1: two Frame::rotate of omega * 1/10 (acclient.c:339889),
-        # 0.2 rad about z in all: q = (cos 0.1, 0, 0, sin 0.1).
-        assert offset.qw == pytest.approx(math.cos(0.1), abs=1e-12)
-        assert offset.qz == pytest.approx(math.sin(0.1), abs=1e-12)
+        # w.z the float store f32(0.1 * 1.0) (acclient.c:339885-339886); 0.2 rad about z in all:
+        # q = (cos 0.1, 0, 0, sin 0.1) to float32 precision.
+        expected = Frame()
+        for _ in range(2):
+            expected.rotate(Vector3(0.0, 0.0, f32(0.1 * 1.0)))
+        assert offset.rotation == expected.rotation
+        assert offset.qw == pytest.approx(math.cos(0.1), abs=1e-7)
+        assert offset.qz == pytest.approx(math.sin(0.1), abs=1e-7)
         assert offset.qx == 0.0 and offset.qy == 0.0
 
 
@@ -119,9 +131,11 @@ class TestPositionFrames:
         offset = Frame()
         seq.update(0.25, offset)
         # After frame 0 the offset is at (0, 1, 0) turned 90 deg about z (local +y -> global -x);
-        # frame 1's (0, 1, 0) then lands at (-1, 1, 0) (Frame::combine, acclient.c:340419).
-        assert offset.origin.x == pytest.approx(-1.0, abs=1e-12)
-        assert offset.origin.y == pytest.approx(1.0, abs=1e-12)
+        # frame 1's (0, 1, 0) then lands at (-1, 1, 0) (Frame::combine, acclient.c:340419). The
+        # turn's quaternion is float32 (cos and sin of pi/4 rounded), so its matrix takes local +y
+        # to global -x only to float32 precision: the tolerance is float32's, not the geometry's.
+        assert offset.origin.x == pytest.approx(-1.0, abs=1e-6)
+        assert offset.origin.y == pytest.approx(1.0, abs=1e-6)
 
     def test_a_wrap_composes_the_first_frame_twice_and_never_the_last(self):
         seq = sequence_of(AnimData(anim(4, [1.0, 2.0, 4.0, 8.0]), framerate=10.0))
@@ -167,8 +181,9 @@ class TestReverse:
         offset = Frame()
         seq.update(0.25, offset)
         # Two boundaries, each apply_physics(1/-10, quantum 0.25) (acclient.c:340756): |1/-10|
-        # with the sign of the *quantum* (acclient.c:339872-339874), so +0.1 each.
-        assert offset.origin.y == pytest.approx(0.2, abs=1e-15)
+        # with the sign of the *quantum* (acclient.c:339872-339874), so +0.1 each, spilled to float
+        # w.y (acclient.c:339877) and added to the float origin (339880).
+        assert offset.origin.y == f32(f32(0.1 * 1.0) + f32(f32(0.1 * 1.0) + 0.0))
 
     def test_reverse_wrap_subtracts_the_low_frame_on_the_way_out(self, world):
         body = place(world)
@@ -422,15 +437,16 @@ class TestWholeQuantum:
         seq.set_velocity(Vector3(0.0, 4.0, 0.0))
         offset = Frame()
         seq.update(0.05, offset)
-        # CSequence::update with an empty list: apply_physics(retval, quantum, quantum) (acclient.c:340963).
-        assert offset.origin.y == 0.05 * 4.0
+        # CSequence::update with an empty list: apply_physics(retval, quantum, quantum) (acclient.c:340963),
+        # the product spilled to float w.y (acclient.c:339877).
+        assert offset.origin.y == f32(0.05 * 4.0)
 
     def test_zero_framerate_applies_velocity_for_the_whole_quantum(self):
         seq = sequence_of(AnimData(anim(4), framerate=0.0), velocity=Vector3(0.0, 4.0, 0.0))
         offset = Frame()
         seq.update(0.05, offset)
         # framerate * quantum == 0: the loop breaks to apply_physics(quantum) (acclient.c:340778-340779).
-        assert offset.origin.y == 0.05 * 4.0
+        assert offset.origin.y == f32(0.05 * 4.0)
         assert seq.frame_number == 0.0
 
     def test_no_offset_frame_still_plays_and_fires_hooks(self, world):

@@ -14,6 +14,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo
 from acphys.transition.transition import InsertType, SpherePath
@@ -275,8 +276,12 @@ class TestSlideSphereNormal:
         normal = Vector3(0, 0, -1)
         ts = path.global_sphere[0].slide_sphere_normal(path, info, normal, path.global_curr_center[0])
         assert ts == TS.COLLIDED
-        expected = Vector3(-0.3, 0, 0.3) * (1 / math.sqrt(0.18))
-        assert close(normal, expected, 1e-9) and close(info.collision_normal, expected, 1e-9)
+        # float32: the step is (0.3f, 0, f32(0.5 - 0.8f)) = (0.3f, 0, -0.3f) (acclient.c:358944-358951),
+        # reversed and normalised in place (normalize_check_small, acclient.c:359004).
+        expected = Vector3(-f32(0.3), 0, f32(0.3))
+        assert not expected.normalize_check_small()
+        assert close(expected, Vector3(-0.3, 0, 0.3) * (1 / math.sqrt(0.18)), 1e-6)
+        assert normal.exactly_equals(expected) and info.collision_normal.exactly_equals(expected)
 
     def test_tiny_projection_collides(self) -> None:
         # Step straight into the normal: projection on the tangent is 0 < EPSILON (acclient.c:358973).

@@ -12,7 +12,9 @@ from __future__ import annotations
 import pytest
 
 from acphys.managers.target import TargetInfo, TargetStatus
+from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from support import LANDBLOCK, place
 
 DT = 1.0 / 30.0
@@ -52,9 +54,22 @@ class TestStick:
         start = _gap(pet, owner)
         pet.update_object_internal(DT)
         # max speed 4 (no weenie, acclient.c:343485) * 5 = 20 m/s (388572): 20/30 m a step (388589);
-        # the heading becomes 90 (the owner is due east, 388593-388600).
-        assert start - _gap(pet, owner) == pytest.approx(20.0 * DT, abs=1e-6)
-        assert pet.position.frame.get_heading() == pytest.approx(90.0, abs=1e-6)
+        # the heading becomes 90 (the owner is due east, 388593-388600). The body's origin is
+        # float32 (an ulp is 3.8e-6 at 40 m) and the step is applied with the new float32 rotation,
+        # so the gap closes by 20/30 m within a few ulps; the heading is read back from a float32
+        # quaternion.
+        assert start - _gap(pet, owner) == pytest.approx(20.0 * DT, abs=1e-5)
+        assert pet.position.frame.get_heading() == pytest.approx(90.0, abs=1e-5)
+
+    def test_the_offset_is_the_step_along_the_local_direction(self, pair):
+        pet, owner = pair
+        pet.stick_to_object(owner.id)
+        offset = Frame()
+        pet.position_manager.adjust_offset(offset, DT)
+        # The direction is (1, 0, 0) exactly (normalize_check_small of (5, 0, 0), z zeroed at
+        # 388556); the step 20 * DT stays double (v14, 388581) and is stored once per axis
+        # (388587-388591).
+        assert offset.origin.exactly_equals(Vector3(f32(20.0 * DT), 0.0, 0.0))
 
     def test_the_body_stops_at_the_0_3m_standoff(self, pair):
         pet, owner = pair
@@ -127,9 +142,13 @@ class TestReports:
         reported = pet.position.copy()
         reported.frame.origin.set(Vector3(40.0, 103.0, GROUND))
         pet.handle_update_target(TargetInfo(far, TargetStatus.OK, reported))
+        offset = Frame()
+        pet.position_manager.adjust_offset(offset, DT)
+        # Due north, 20/30 m closer (388546-388547): the offset is the step stored once (388587-388591).
+        assert offset.origin.exactly_equals(Vector3(0.0, f32(20.0 * DT), 0.0))
         pet.update_object_internal(DT)
-        # Due north, 20/30 m closer (388546-388547).
-        assert pet.position.frame.origin.y == pytest.approx(100.0 + 20.0 * DT, abs=1e-6)
+        # The body's float32 origin at y = 100 (an ulp is 7.6e-6) takes the step within a few ulps.
+        assert pet.position.frame.origin.y == pytest.approx(100.0 + 20.0 * DT, abs=2e-5)
 
     def test_unstick_lets_go(self, pair):
         # PositionManager::UnStick is the sticky manager's HandleExitWorld (388306, 388501).

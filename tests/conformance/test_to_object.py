@@ -19,6 +19,7 @@ from acphys.math.vector import Vector3 as V
 from acphys.motion.motion_table import MotionTable
 from acphys.motion.move_to import cylinder_distance
 from acphys.motion.movement import MovementParameters, MovementType
+from acphys.precision import f32
 from acphys.scenario import parse_scenario
 from acphys.scenario.motion_tables import builtin_motion_table
 from support import place
@@ -58,9 +59,10 @@ class TestMoveToObject:
         assert moveto.movement_type == MovementType.MOVE_TO_OBJECT
         assert moveto.sought_object_id == target.id
         assert moveto.top_level_object_id == target.id
-        # CPartArray::GetRadius / GetHeight of the human: 0.48 and 1.83 (acclient.c:319807-319817).
-        assert moveto.sought_object_radius == 0.48
-        assert moveto.sought_object_height == 1.83
+        # CPartArray::GetRadius / GetHeight of the human: 0.48 and 1.83 (acclient.c:319807-319817),
+        # float fields of the setup and of the move-to manager.
+        assert moveto.sought_object_radius == f32(0.48)
+        assert moveto.sought_object_height == f32(1.83)
 
     def test_a_held_target_is_sought_through_its_holder(self, world):
         world.set_flat_ground(0xA9B4, 50.0)

@@ -21,6 +21,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3 as V
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.setup import Setup, human_setup
 from acphys.transition.transition import MAX_TRANSITION_LEVEL, Transition
 from acphys.world.static_objects import add_static_object
@@ -31,6 +32,13 @@ GROUND = 50.0
 #: The human's sphere 0 bottom is 0.475 - 0.48 below the origin.
 SINK = 0.48 - 0.475
 STEP = 0.4
+
+
+def rest(height: float) -> float:
+    """The origin z of a human resting on ground at ``height``: the float32 nearest
+    ``height + SINK`` (origins are float stores; sphere 0's float32 bottom is then within a few
+    ulps of the plane, inside EPSILON)."""
+    return f32(height + SINK)
 
 
 def walker(world: World, origin: tuple[float, float, float], state: PS = PS.GRAVITY) -> PhysicsObj:
@@ -88,7 +96,9 @@ class TestCalcNumSteps:
 
     def test_a_short_path_is_one_step_and_no_path_none(self) -> None:
         _, per_step, steps = self.path(World(), V(0.0, 0.3, 0.0)).calc_num_steps()
-        assert steps == 1 and per_step.y == pytest.approx(0.3)  # acclient.c:311840
+        # The end is stored at f32(96 + f32(0.3)) and get_offset narrows the difference
+        # (acclient.c:311704-311714): 0.30000305, one step of all of it (acclient.c:311840).
+        assert steps == 1 and per_step.y == f32(f32(96.0 + f32(0.3)) - 96.0)
         _, per_step, steps = self.path(World(), V()).calc_num_steps()
         assert steps == 0 and per_step.exactly_equals(V())  # acclient.c:311847
 
@@ -119,7 +129,7 @@ class TestTerrain:
         # One step (0.4 < r). The land cell's validate_walkable finds sphere 0's bottom 0.105 under the
         # plane z = 50 and lifts it onto it (ADJUSTED, acclient.c:314257-314270); the re-insert touches it
         # and sets the contact plane again (acclient.c:314237).
-        assert path.curr_pos.frame.origin.z == pytest.approx(GROUND + SINK, abs=1e-9)
+        assert path.curr_pos.frame.origin.z == rest(GROUND)
         assert info.contact_plane_valid and info.contact_plane.N.exactly_equals(V(0.0, 0.0, 1.0))
         assert info.contact_plane.d == pytest.approx(-GROUND)
         # Not in contact before: the plane is also an environment collision (acclient.c:314276),
@@ -129,7 +139,7 @@ class TestTerrain:
 
     def test_standing_and_walking_on_flat_ground_keeps_the_contact(self, ground: World) -> None:
         body = walker(ground, (96.0, 96.0, 50.0))
-        assert body.position.frame.origin.z == pytest.approx(GROUND + SINK, abs=1e-9)
+        assert body.position.frame.origin.z == rest(GROUND)
         assert body.transient_state & TS.CONTACT and body.transient_state & TS.ON_WALKABLE
         t = sweep(body, 0.3, 0.0)
         assert t is not None
@@ -144,7 +154,7 @@ class TestTerrain:
         # The moved sphere is 2 cm over the plane (OK, no contact plane); the body was in contact on
         # walkable ground, so transitional_insert steps down by its step_down_height (0.4 <= 2r, one
         # try, acclient.c:312964-312986); the step lands on the plane and sticks.
-        assert t.sphere_path.curr_pos.frame.origin.z == pytest.approx(GROUND + SINK, abs=1e-9)
+        assert t.sphere_path.curr_pos.frame.origin.z == rest(GROUND)
         assert t.collision_info.contact_plane_valid
 
 
@@ -188,12 +198,16 @@ class TestWalls:
 
     def test_a_step_higher_than_the_step_up_height_blocks(self, ground: World) -> None:
         body = walker(ground, (96.0, 96.0, 50.0))
-        box(ground, (97.0, 90.0, 50.0), (99.0, 102.0, 50.6))
+        box(ground, (97.0, 90.0, 50.0), (99.0, 102.0, 50.7))
         t = sweep(body, 2.0, 0.0)
         assert t is not None
-        # Five steps of 0.4: the second (96.8) reaches the face and the 0.6 rise is too high, so it
+        # Five steps of 0.4: the second (96.8) reaches the face and the 0.7 rise is too high, so it
         # rolls back to 96.4; the sliding normal then turns the third step's offset to nothing, and
-        # the sweep stops there, valid (acclient.c:313271-313273).
+        # the sweep stops there, valid (acclient.c:313271-313273). "Too high" is the step-down
+        # from step_up: CPolygon::adjust_sphere_to_plane accepts a rise up to 1.5 step heights
+        # (walk_interp >= -0.5, acclient.c:359575), 0.6 m here. A 0.6 box sits on that limit: with
+        # float32 stores its top f32(50.6) is 1.5e-6 under 50.6 and it is climbed, so the box
+        # is 0.7 m high.
         assert t.sphere_path.curr_pos.frame.origin == V(96.4, 96.0, GROUND + SINK)
 
 
@@ -201,7 +215,7 @@ class TestLedges:
     def test_without_edge_slide_a_body_walks_off_the_ledge(self, ground: World) -> None:
         box(ground, (90.0, 90.0, 50.0), (97.0, 102.0, 52.0))
         body = walker(ground, (95.0, 96.0, 52.2))
-        assert body.position.frame.origin.z == pytest.approx(52.0 + SINK, abs=1e-9)
+        assert body.position.frame.origin.z == rest(52.0)
         t = sweep(body, 3.0, 0.0)
         assert t is not None
         # Past the edge the 0.4 step-down finds nothing and edge_slide, without EDGE_SLIDE, accepts

@@ -33,6 +33,7 @@ from acphys.math.cell_id import (
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 TOL = 1e-12
 C45 = math.cos(math.pi / 4)
@@ -246,10 +247,11 @@ class TestOutside:
     def test_adjust_does_not_snap_at_or_beyond_epsilon(self):
         # Same function, strict <: |x| = 3e-4 is kept, so lcoord x = 1352 - 1 = 1351 → block 0xA8,
         # cx = 7; y = 1440 + ⌊5/24⌋ = 1440 → cy = 0; low = 0 + 56 + 1 = 0x39 → 0xA8B40039,
-        # loc.x = -3e-4 + 192.
+        # loc.x = f32(x + 192), x = f32(-3e-4): the moved x is stored into the float field
+        # (acclient.c:467457).
         loc = Vector3(-3e-4, 5.0, 0.0)
         assert adjust_to_outside(0xA9B40001, loc) == 0xA8B40039
-        assert loc.x == pytest.approx(192.0 - 3e-4, abs=TOL)
+        assert loc.x == f32(f32(-3e-4) + 192.0)
         # x = -EPSILON exactly is not < EPSILON: not snapped either.
         loc = Vector3(-EPSILON, 5.0, 0.0)
         assert adjust_to_outside(0xA9B40001, loc) == 0xA8B40039

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 import acphys
+from acphys.constants import EPSILON
 from acphys.dat import DatError
 from acphys.dat.env_cell import make_env_cell, unpack_env_cell, unpack_environment
 from acphys.geometry.bsp import NODE_TYPE_PORTAL, BSPLeaf, BSPNode, type_tag
@@ -308,8 +309,12 @@ def test_a_cell_dat_building_loads_its_room_and_door(room_dats: Path) -> None:
         cell = int(record["cell"], 16)
         x, y, _z = record["origin"]
         # The body is in the room while its sphere 0 centre (above the origin) is inside the
-        # room's cell BSP, x 90..96 (CObjCell::find_cell_list, acclient.c:346960).
-        assert cell == (ROOM if 90.0 < x < 96.0 else LAND), record
+        # room's cell BSP, x 90..96 (CObjCell::find_cell_list, acclient.c:346960); within EPSILON
+        # of a wall (a float32 origin lands there: 89.99993896) the BSP's plane test may say either.
+        if min(abs(x - 90.0), abs(x - 96.0)) <= EPSILON:
+            assert cell in (ROOM, LAND), record
+        else:
+            assert cell == (ROOM if 90.0 < x < 96.0 else LAND), record
         assert y == 93.0
         if not visited or visited[-1] != cell:
             visited.append(cell)

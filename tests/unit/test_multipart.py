@@ -28,6 +28,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3 as V
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.setup import Setup, SetupPart
 from acphys.transition.transition import Transition
 from acphys.world.static_objects import add_static_object
@@ -146,7 +147,9 @@ def test_a_sweep_into_the_first_part_stops_there_and_the_second_is_not_asked(gro
     # is still the west part's, the east part never cached the spheres.
     assert path.localspace_pos.frame.origin.exactly_equals(west.pos.frame.origin)
     assert not path.localspace_pos.frame.origin.exactly_equals(east.pos.frame.origin)
-    assert close(path.localspace_sphere[0].center, V(-1.4, 0.0, 1.5))
+    # The sphere centre is a float32: x 43.6 is stored as f32(43.6), 1.5e-6 short of it, and the
+    # part frame's x 45 takes that to local -1.4000015 exactly.
+    assert close(path.localspace_sphere[0].center, V(f32(43.6) - 45.0, 0.0, 1.5))
 
 
 def test_a_sweep_into_the_second_part_is_met_at_its_default_scaled_face(ground) -> None:
@@ -160,7 +163,8 @@ def test_a_sweep_into_the_second_part_is_met_at_its_default_scaled_face(ground) 
     assert obj.find_obj_collisions(t) == TS.ADJUSTED
     path = t.sphere_path
     assert path.localspace_pos.frame.origin.exactly_equals(east.pos.frame.origin)
-    assert close(path.localspace_sphere[0].center, V(-1.2, 0.0, 0.75))
+    # As above, from the float32 centre x f32(48.6) and the part at 51, halved by the scale.
+    assert close(path.localspace_sphere[0].center, V((f32(48.6) - 51.0) / 2.0, 0.0, 0.75))
     assert path.localspace_sphere[0].radius == 0.25
     assert path.collide and close(path.step_up_normal, V(-1.0, 0.0, 0.0))
     # Between the parts (centre 48.1: 1.9 from the west box, local x -1.45 at the east one) every
@@ -185,7 +189,7 @@ def test_shadows_cover_both_parts_cells(ground) -> None:
     for cell_id in (0xA9B40012, 0xA9B4000A):
         t = sweep(ground, V(51.0, 36.0, 1.0), V(51.6, 36.0, 1.0), 0xA9B40012)
         assert ground.get_cell(cell_id).find_obj_collisions(t) == TS.ADJUSTED
-        assert close(t.sphere_path.localspace_sphere[0].center, V(-1.2, 0.0, 0.75))
+        assert close(t.sphere_path.localspace_sphere[0].center, V((f32(51.6) - 54.0) / 2.0, 0.0, 0.75))
 
 
 # -- the DAT path ------------------------------------------------------------------------------
@@ -303,9 +307,17 @@ def test_bodies_walking_into_either_dat_part_stop_like_ladder_rung_3(tmp_path: P
     # 0.104 m sub-step a step; the step reaching the face fails its step-up
     # (BSPTREE::step_sphere_up, acclient.c:361071) and is rolled back (CTransition::validate_transition,
     # acclient.c:312193): 31 steps, 96 + 31 × 0.104. The east part is met at its default scale.
+    # Each step adds the float32 walk frame (the sequence's float spills of 1/30 × f32(3.12),
+    # CSequence::apply_physics acclient.c:339877-339880) to a float32 y near 97-99 m, where the
+    # spacing is 2^-17: the walk frame is 13631.49 of those, so every step rounds down by 0.49 of one and
+    # the 31 steps end 0.12 mm short of 96 + 31 × 0.104, as retail's would.
+    frame_of_walking = f32(f32(1.0 / 30.0 * f32(3.12)) + 0.0)
+    expected = 96.0
+    for _ in range(31):
+        expected = f32(expected + frame_of_walking)
     for name, x in (("west", 84.0), ("east", 108.0)):
         origin = sim.body(name).position.frame.origin
-        assert abs(origin.y - (96.0 + 31 * 3.12 / 30.0)) < 1e-6, name
+        assert origin.y == expected, name
         assert origin.x == x
     # Between the parts (x 96) nothing is in the way: 3 s at 3.12 m/s.
     assert sim.body("between").position.frame.origin.y > 99.75 + 5.0

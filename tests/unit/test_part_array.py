@@ -10,6 +10,7 @@ from acphys.math.vector import Vector3
 from acphys.motion.movement import MovementError, MovementParameters
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.setup import Setup
 from acphys.world.world import World
@@ -33,11 +34,12 @@ def test_size_and_step_heights_follow_the_body_scale() -> None:
     parts = body.part_array
     # setup value × scale.z (GetHeight acclient.c:325387, GetRadius 325381,
     # GetStepUpHeight 325399, GetStepDownHeight 325413); SetScaleStatic keeps them in step (319007).
+    # The setup's fields are floats; the products are returned in st0, unrounded.
     assert parts.scale == 1.5
     assert parts.get_height() == 3.0
-    assert parts.get_radius() == 0.3 * 1.5
-    assert parts.get_step_up_height() == 0.4 * 1.5
-    assert parts.get_step_down_height() == 0.6 * 1.5
+    assert parts.get_radius() == f32(0.3) * 1.5
+    assert parts.get_step_up_height() == f32(0.4) * 1.5
+    assert parts.get_step_down_height() == f32(0.6) * 1.5
     assert parts.get_num_sphere() == 1 and parts.get_num_cylsphere() == 1
     assert parts.get_cylsphere()[0].height == 2.0  # shapes stay unscaled; the sweep scales them
 

@@ -12,7 +12,7 @@ from acphys.math.cell_id import adjust_to_outside, is_outdoor
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
-from acphys.precision import f32
+from acphys.precision import f32, pack3, unpack3
 from acphys.transition.transition import Transition
 from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
 
@@ -117,15 +117,21 @@ class SetPositionError(enum.IntEnum):
 class SetPositionStruct:
     """Retail ``SetPositionStruct`` (acclient.h:52398): a position and how to place a body there.
 
+    ``xrad`` and ``yrad`` are ``float`` fields: they are narrowed when the struct is made.
+
     Retail: SetPositionStruct::SetPositionStruct @ 0x0051BB50 (acclient.c:329731)
     """
 
     pos: Position = field(default_factory=Position)
-    flags: SetPositionFlags = field(default_factory=SetPositionFlags)
+    flags: SetPositionFlags = field(default=SetPositionFlags(0))
     line: Vector3 = field(default_factory=Vector3)
     xrad: float = 0.0
     yrad: float = 0.0
     num_tries: int = 0
+
+    def __post_init__(self) -> None:
+        self.xrad = f32(self.xrad)
+        self.yrad = f32(self.yrad)
 
 
 class CellMembership:
@@ -330,16 +336,18 @@ class CellMembership:
     def set_scatter_position_internal(self, sps: SetPositionStruct, transit: Transition) -> int:
         """Up to ``num_tries`` placements at ``sps.pos`` moved by ``RollDice(-1, 1)`` times
         ``xrad`` and ``yrad`` (x then y); the first OK wins. No tries is GENERAL_FAILURE.
+        The x offset is spilled to ``float`` before it is added, the y offset is not
+        (acclient.c:323236-323242).
 
         Retail: CPhysicsObj::SetScatterPositionInternal @ 0x00515F00 (acclient.c:323166)
         """
         result = SetPositionError.GENERAL_FAILURE
         for _ in range(sps.num_tries):
             pos = sps.pos.copy()
-            dx = self.world.dice.uniform(-1.0, 1.0) * sps.xrad
+            dx = f32(self.world.dice.uniform(-1.0, 1.0) * sps.xrad)
             dy = self.world.dice.uniform(-1.0, 1.0) * sps.yrad
-            pos.frame.origin.x += dx
-            pos.frame.origin.y += dy
+            origin = pos.frame.origin
+            origin.x, origin.y, origin.z = unpack3(pack3(dx + origin.x, dy + origin.y, origin.z))
             result = self.set_position_with_struct(pos, sps, transit)
             if result == SetPositionError.OK:
                 break

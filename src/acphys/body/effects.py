@@ -6,6 +6,7 @@ from acphys.attachments import AnimHook, ParticleManager
 from acphys.constants import EPSILON
 from acphys.hooks import FPHook, HookType
 from acphys.math.frame import Frame
+from acphys.precision import f32
 
 
 class Effects:
@@ -70,19 +71,20 @@ class Effects:
 
         The shared shape of SetTranslucency(2), SetPartTranslucency, SetLuminosity,
         SetPartLuminosity, SetDiffusion and SetPartDiffusion: each one's immediate
-        branch is the ``process_fp_hook`` case of its kind.
+        branch is the ``process_fp_hook`` case of its kind. ``start`` and ``end`` are ``float``
+        parameters in all of them (``delta`` is a double).
         """
         if delta >= EPSILON:
             self.hooks.insert(0, FPHook(hook_type, self.world.physics_time, delta, start, end, user_data))
         else:
-            self.process_fp_hook(hook_type, end, user_data)
+            self.process_fp_hook(hook_type, f32(end), user_data)
 
     def set_translucency_internal(self, translucency: float) -> None:
         """Set translucency, never below ``translucency_original``.
 
         Retail: CPhysicsObj::SetTranslucencyInternal @ 0x0050F960 (acclient.c:316802)
         """
-        self.translucency = max(translucency, self.translucency_original)
+        self.translucency = max(f32(translucency), self.translucency_original)
 
     def set_translucency(self, translucency: float, delta: float = 0.0) -> None:
         """Translucency to ``translucency`` now, or over ``delta`` s tweened from 0.0 (not from the
@@ -121,10 +123,12 @@ class Effects:
     def call_pes(self, pes: int, delta: float) -> None:
         """Play script ``pes`` now, or after a random pause in [0, ``delta``] (a CALL_PES hook).
 
+        The dice's upper bound and the pause it rolls are ``float`` (acclient.c:318986-318987).
+
         Retail: CPhysicsObj::CallPES @ 0x00511AF0 (acclient.c:318972)
         """
         if delta >= EPSILON:
-            pause = self.world.dice.uniform(0.0, delta)
+            pause = f32(self.world.dice.uniform(0.0, f32(delta)))
             self.hooks.insert(0, FPHook(HookType.CALL_PES, self.world.physics_time, pause, 0.0, 1.0, pes))
         elif self.cell is not None:
             self.play_script_internal(pes)
@@ -161,7 +165,7 @@ class Effects:
 
     def play_script_type(self, script_type: int, mod: float) -> bool:
         """Play the ``physics_script_table``'s script for ``script_type`` at intensity ``mod``
-        (retail's ``play_script(PScriptType, float)`` overload).
+        (retail's ``play_script(PScriptType, float)`` overload: ``mod`` is narrowed to float32).
 
         Retail: CPhysicsObj::play_script @ 0x00513260 (acclient.c:320325)
         """
@@ -169,7 +173,7 @@ class Effects:
             return True
         if self.physics_script_table is None:
             return False
-        return self.play_script_internal(self.physics_script_table.get_script(script_type, mod))
+        return self.play_script_internal(self.physics_script_table.get_script(script_type, f32(mod)))
 
     def play_default_script(self) -> bool:
         """Play ``default_script`` at ``default_script_intensity`` from the script table.
@@ -233,8 +237,11 @@ class Effects:
     def set_scale_static(self, new_scale: float) -> None:
         """Scale the body and its part array now.
 
+        ``new_scale`` is a ``float`` parameter, stored in ``m_scale`` and the part array's scale.
+
         Retail: CPhysicsObj::SetScaleStatic @ 0x00511BB0 (acclient.c:319007)
         """
+        new_scale = f32(new_scale)
         self.scale = new_scale
         if self.part_array is not None:
             self.part_array.set_scale_internal(new_scale)

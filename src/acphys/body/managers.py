@@ -54,9 +54,11 @@ class ManagerRequests:
     def set_target(self, context_id: int, object_id: int, radius: float, quantum: float) -> None:
         """Track ``object_id`` through the target manager (made here when the body has none).
 
+        ``radius`` is a ``float`` parameter (``quantum`` a double).
+
         Retail: CPhysicsObj::set_target @ 0x0050ED30 (acclient.c:315991)
         """
-        self._make_target_manager().set_target(context_id, object_id, radius, quantum)
+        self._make_target_manager().set_target(context_id, object_id, f32(radius), quantum)
 
     def clear_target(self) -> None:
         """Retail: CPhysicsObj::clear_target @ 0x0050ED90 (acclient.c:316011)"""
@@ -77,11 +79,12 @@ class ManagerRequests:
 
     def add_voyeur(self, object_id: int, radius: float, quantum: float) -> None:
         """Let ``object_id`` track this body (the target manager is made here when missing).
-        Retail's parameter is a float, so ``quantum`` reaches the voyeur table narrowed to float32.
+        Retail's parameters are floats, so ``radius`` and ``quantum`` reach the voyeur table
+        narrowed to float32.
 
         Retail: CPhysicsObj::add_voyeur @ 0x0050EE00 (acclient.c:316056)
         """
-        self._make_target_manager().add_voyeur(object_id, radius, f32(quantum))
+        self._make_target_manager().add_voyeur(object_id, f32(radius), f32(quantum))
 
     def remove_voyeur(self, object_id: int) -> bool:
         """Retail: CPhysicsObj::remove_voyeur @ 0x0050EE50 (acclient.c:316076)"""
@@ -203,7 +206,7 @@ class ManagerRequests:
 
     def stick_to_object(self, object_id: int) -> None:
         """Stick to ``object_id``'s top-level object (its parent, if parented), with its radius and
-        height; an unknown id only makes the position manager.
+        height (both passed as ``float``); an unknown id only makes the position manager.
 
         Retail: CPhysicsObj::stick_to_object @ 0x005127E0 (acclient.c:319724)
         """
@@ -213,7 +216,7 @@ class ManagerRequests:
             return
         if target.parent is not None:
             target = target.parent
-        manager.stick_to(target.id, target.get_radius(), target.get_height())
+        manager.stick_to(target.id, f32(target.get_radius()), f32(target.get_height()))
 
     def get_sticky_object_id(self) -> int:
         """Retail: CPhysicsObj::get_sticky_object_id @ 0x0050EAF0 (acclient.c:315807)"""
@@ -222,9 +225,11 @@ class ManagerRequests:
     def constrain_to(self, p: Position, start_distance: float, max_distance: float) -> None:
         """Leash the body to ``p`` (offsets damped from ``start_distance``, none past ``max_distance``).
 
+        Both distances are ``float`` parameters.
+
         Retail: CPhysicsObj::ConstrainTo @ 0x00510520 (acclient.c:317590)
         """
-        self.make_position_manager().constrain_to(p, start_distance, max_distance)
+        self.make_position_manager().constrain_to(p, f32(start_distance), f32(max_distance))
 
     def _distance_for_place(
         self, player_indoors: float, player_outdoors: float, indoors: float, outdoors: float

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 from acphys.flags import PhysicsState, TransientState, member_namespace
 from acphys.math.position import Position
 from acphys.motion.movement import MovementError, MovementParameters, MovementStruct, MovementType
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.motion.interp import MotionInterp
@@ -137,6 +138,8 @@ class Motion:
     ) -> None:
         """Hand a MoveToObject request (type 6) to the movement manager, made if needed.
 
+        The radius and height are ``float`` parameters.
+
         Retail: CPhysicsObj::MoveToObject_Internal @ 0x005102E0 (acclient.c:317482)
         """
         manager = self.make_movement_manager(init_motion=True)
@@ -144,8 +147,8 @@ class Motion:
             MovementType.MOVE_TO_OBJECT,
             object_id=object_id,
             top_level_id=top_level_id,
-            radius=object_radius,
-            height=object_height,
+            radius=f32(object_radius),
+            height=f32(object_height),
             params=params,
         )
         manager.perform_movement(request)

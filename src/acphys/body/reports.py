@@ -11,6 +11,7 @@ from acphys.flags import ObjectInfoState, PhysicsState, TransientState, Transiti
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.cell_id import get_block_offset
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.transition import Transition
 
 if TYPE_CHECKING:
@@ -207,7 +208,8 @@ class CollisionReports:
         reports carry this body's velocity minus ``obj``'s. Retail quirk kept: in the report to
         ``obj`` the missile bit is this body's ``prev_has_contact`` and the in-contact bit is
         whether this body was a missile (``build_collision_profile`` arguments swapped,
-        acclient.c:320293-320299).
+        acclient.c:320310-320316). The height handed to ``determine_quadrant`` is spilled to
+        ``float`` (acclient.c:320266 and 320297).
 
         Retail: CPhysicsObj::report_object_collision @ 0x00513060 (acclient.c:320227)
         """
@@ -219,7 +221,7 @@ class CollisionReports:
         if not obj.state & PS.IGNORE_COLLISIONS:
             if self.state & PS.REPORT_COLLISIONS:
                 if was_missile:
-                    location = obj.position.determine_quadrant(obj.get_height(), self.position)
+                    location = obj.position.determine_quadrant(f32(obj.get_height()), self.position)
                     report = CollisionReport(CollisionKind.ATTACK, obj.id, obj, location=location)
                 else:
                     report = CollisionReport(
@@ -237,7 +239,7 @@ class CollisionReports:
                 self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
         if obj.state & PS.REPORT_COLLISIONS and not self.state & PS.IGNORE_COLLISIONS:
             if obj.state & PS.MISSILE:
-                location = self.position.determine_quadrant(self.get_height(), obj.position)
+                location = self.position.determine_quadrant(f32(self.get_height()), obj.position)
                 report = CollisionReport(CollisionKind.ATTACK, self.id, self, location=location)
             else:
                 report = CollisionReport(

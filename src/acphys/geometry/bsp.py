@@ -8,6 +8,10 @@ a leaf holds (``acphys.geometry.polygon.Polygon`` provides it).
 Retail's cell BSPs (``point_inside_cell_bsp`` and friends) walk only ``pos_node`` links. Retail
 never initialises a leaf's splitting plane; here a leaf carries the zero plane, which every walk
 reads as "on the plane" (distance 0).
+
+The physics walks sum a plane distance z, y, x (:func:`_plane_dist`), the cell walks
+``point_inside_cell_bsp`` and ``sphere_intersects_cell_bsp`` y, z, x (:func:`_cell_plane_dist`);
+the order matters once the operands are float32 and the sums double.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from acphys.geometry.bsp_collision import BSPTreeCollisions
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.transition.transition import SpherePath
@@ -41,8 +46,9 @@ NODE_TYPE_PORTAL = type_tag("PORT")
 #: for ``BpIN``/``BpnN``.
 NODE_TYPE_BOTH_CHILDREN = type_tag("BPnN")
 
-#: Cell-BSP sphere slack ``0.0099999998`` (BSPNODE::sphere_intersects_cell_bsp, acclient.c:362993).
-CELL_SPHERE_SLACK: float = 0.0099999998
+#: Cell-BSP sphere slack, the float32 literal ``0.0099999998`` (float32 0.01;
+#: BSPNODE::sphere_intersects_cell_bsp, acclient.c:362993).
+CELL_SPHERE_SLACK: float = f32(0.0099999998)
 
 #: ``sphere_intersects_cell_bsp`` results.
 CELL_OUTSIDE = 0
@@ -122,8 +128,15 @@ def spheres_intersect(a: Sphere, b: Sphere) -> bool:
 
 
 def _plane_dist(plane: Plane, p: Vector3) -> float:
+    """``N·p + d`` summed z, y, x (the physics walks, e.g. acclient.c:363586)."""
     n = plane.N
-    return n.x * p.x + n.y * p.y + n.z * p.z + plane.d
+    return n.z * p.z + n.y * p.y + n.x * p.x + plane.d
+
+
+def _cell_plane_dist(plane: Plane, p: Vector3) -> float:
+    """``N·p + d`` summed y, z, x (the cell walks, acclient.c:362952, 362989)."""
+    n = plane.N
+    return n.y * p.y + n.z * p.z + n.x * p.x + plane.d
 
 
 def _is_behind(plane: Plane, p: Vector3) -> bool:
@@ -318,7 +331,7 @@ class BSPNode:
         """
         node: BSPNode | None = self
         while node is not None:
-            if _is_behind(node.splitting_plane, origin):
+            if _cell_plane_dist(node.splitting_plane, origin) < -EPSILON:
                 return False
             node = node.pos_node
         return True
@@ -328,14 +341,18 @@ class BSPNode:
 
         With ``r = radius + 0.0099999998``, walking the ``pos_node`` chain: distance ``<= -r`` is
         outside; ``>= r`` goes on (2 at the chain's end); in between, the answer is 1 if the rest of
-        the chain (from the next node) is not outside, and 1 if there is no next node.
+        the chain (from the next node) is not outside, and 1 if there is no next node. ``r`` is
+        the ``float`` local ``curr_spherea``, but this node's tests read it from the register
+        (acclient.c:362989-363013); the nodes further on read the stored float.
 
         Retail: BSPNODE::sphere_intersects_cell_bsp @ 0x0053C260 (acclient.c:362979)
         """
+        center = curr_sphere.center
         slack = curr_sphere.radius + CELL_SPHERE_SLACK
+        stored = f32(slack)
         node: BSPNode = self
         while True:
-            dist = _plane_dist(node.splitting_plane, curr_sphere.center)
+            dist = _cell_plane_dist(node.splitting_plane, center)
             if dist <= -slack:
                 return CELL_OUTSIDE
             nxt = node.pos_node
@@ -347,6 +364,7 @@ class BSPNode:
             if nxt is None:
                 return CELL_ENTIRELY_INSIDE
             node = nxt
+            slack = stored
 
     def box_intersects_cell_bsp(self, box_min: Vector3, box_max: Vector3) -> bool:
         """Cell BSP: false once some node on the ``pos_node`` chain has all eight corners of the

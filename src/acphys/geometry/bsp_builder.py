@@ -18,10 +18,17 @@ grows as the product of the face counts; it is meant for a few solids.
 
 Faces are ``acphys.geometry.polygon.Polygon`` objects (vertices counter-clockwise seen from
 outside, so the plane faces out); they are shared, not copied, between a solid's leaves.
+
+The tree is data of the shape a DAT holds, so it is float32 throughout: vertices are float32
+``Vector3`` values, each face's plane is the one ``CPolygon::make_plane`` derives from them (as
+``CPolygon::UnPack`` does, acclient.c:359911), splitting planes are those face planes, and node
+spheres have float32 centres and radii, each radius rounded up to the next float32 so that the
+sphere still holds every vertex below it.
 """
 
 from __future__ import annotations
 
+import struct
 from collections.abc import Sequence
 
 from acphys.constants import EPSILON
@@ -30,6 +37,10 @@ from acphys.geometry.plane import Plane
 from acphys.geometry.polygon import Polygon
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
+from acphys.precision import f32
+
+_F32_BITS = struct.Struct("<f")
+_U32 = struct.Struct("<I")
 
 
 def box_faces(box_min: Vector3, box_max: Vector3) -> list[Polygon]:
@@ -94,11 +105,22 @@ def _graft(node: BSPNode, faces: Sequence[Polygon], planes: Sequence[Plane]) -> 
     return node
 
 
+def _f32_at_least(value: float) -> float:
+    """The smallest float32 not below ``value`` (``value`` finite and not negative)."""
+    narrowed = f32(value)
+    if narrowed >= value:
+        return narrowed
+    return _F32_BITS.unpack(_U32.pack(_U32.unpack(_F32_BITS.pack(narrowed))[0] + 1))[0]
+
+
 def _bounding_sphere(points: Sequence[Vector3]) -> Sphere:
     lo = Vector3(min(p.x for p in points), min(p.y for p in points), min(p.z for p in points))
     hi = Vector3(max(p.x for p in points), max(p.y for p in points), max(p.z for p in points))
     center = (lo + hi) * 0.5
-    return Sphere(center, max((p - center).length() for p in points))
+    reach = max(
+        ((p.x - center.x) ** 2 + (p.y - center.y) ** 2 + (p.z - center.z) ** 2) ** 0.5 for p in points
+    )
+    return Sphere(center, _f32_at_least(reach))
 
 
 def _finish(node: BSPNode, leaves: list[BSPLeaf]) -> list[Vector3]:

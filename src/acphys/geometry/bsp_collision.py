@@ -5,7 +5,10 @@ in its owner's frame: a cell or part calls ``SPHEREPATH::cache_localspace_sphere
 frame and scale first, so ``localspace_sphere``, ``localspace_curr_center``, ``localspace_pos``
 and ``localspace_z`` describe the moving spheres in tree space (lengths divided by ``scale``).
 Offsets found there are rotated back with ``localspace_pos`` and, where retail does, multiplied
-by ``scale`` before they move ``check_pos``.
+by ``scale`` before they move ``check_pos``. Retail rotates with three different row orders: the
+inlined ``Frame::localtoglobalvec`` (``step_sphere_up``, ``slide_sphere``),
+``Position::localtoglobalvec`` (:func:`~acphys.geometry.bbox.position_localtoglobalvec`) and a
+few inlined sums of their own; each routine here uses the one retail does.
 
 ``find_collisions`` keeps retail's query kinds apart (acclient.c:361335-361498): placement or
 ethereal obstruction, ``check_walkable``, ``step_down``, ``collide`` (land on a walkable face),
@@ -20,10 +23,11 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
+from acphys.geometry.bbox import position_localtoglobal, position_localtoglobalvec
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
-from acphys.math.cell_id import get_block_offset
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.geometry.bsp import BSPNode, BSPPolygon
@@ -50,20 +54,36 @@ ADJUST_BRACKET = 0.02
 def plane_localtoglobal(to: Position, frm: Position, local_plane: Plane) -> Plane:
     """``local_plane`` (in ``frm``'s frame) as a plane in ``to``'s landblock.
 
-    The normal is rotated by ``frm``; the point ``-d·N`` is taken to ``to``'s block
-    (``Position::localtoglobal``) and ``d`` recomputed through it.
+    The normal is rotated by ``frm`` (each row summed z, y, x and spilled to ``float``); the
+    point ``-d·N`` (a ``Vector3``) is taken to ``to``'s block (``Position::localtoglobal``) and
+    ``d`` recomputed through it (acclient.c:467689-467713).
 
     Retail: Plane::localtoglobal @ 0x005AA0A0 (acclient.c:467671)
     """
     n = local_plane.N
-    point = Vector3(-local_plane.d * n.x, -local_plane.d * n.y, -local_plane.d * n.z)
-    normal = frm.frame.localtoglobalvec(n)
-    p = frm.frame.localtoglobal(point) + get_block_offset(to.objcell_id, frm.objcell_id)
+    m = frm.frame.m
+    back = -local_plane.d
+    point = Vector3(back * n.x, back * n.y, back * n.z)
+    normal = Vector3(
+        m[6] * n.z + m[3] * n.y + m[0] * n.x,
+        m[7] * n.z + m[4] * n.y + m[1] * n.x,
+        m[8] * n.z + m[5] * n.y + m[2] * n.x,
+    )
+    p = position_localtoglobal(to, frm, point)
     return Plane(normal, -(normal.z * p.z + normal.y * p.y + normal.x * p.x))
 
 
 def _along(origin: Vector3, movement: Vector3, t: float) -> Vector3:
-    return Vector3(movement.x * t + origin.x, movement.y * t + origin.y, movement.z * t + origin.z)
+    """``origin + movement·t`` as ``adjust_to_plane`` stores it: ``movement·t`` is spilled to
+    ``float`` for x and y only, and each sum is stored (acclient.c:360956-360967)."""
+    tx, ty, _ = unpack3(pack3(movement.x * t, movement.y * t, 0.0))
+    return Vector3(tx + origin.x, ty + origin.y, t * movement.z + origin.z)
+
+
+def _scaled_global(path: SpherePath, offset: Vector3, scale: float) -> Vector3:
+    """``offset`` (a ``Vector3``) rotated by ``Position::localtoglobalvec`` and multiplied by the
+    ``float`` ``scale``, component by component (acclient.c:361383-361389, 361165-361171)."""
+    return position_localtoglobalvec(path.localspace_pos, offset) * scale
 
 
 class BSPTreeCollisions:
@@ -119,16 +139,15 @@ class BSPTreeCollisions:
             poly = root.find_walkable(path, valid_pos, movement, path.localspace_z)
             if poly is None:
                 return TS.OK
-            offset = path.localspace_pos.frame.localtoglobalvec(valid_pos.center - sphere0.center) * scale
-            path.add_offset_to_check_pos(offset)
+            path.add_offset_to_check_pos(_scaled_global(path, valid_pos.center - sphere0.center, scale))
             contact = plane_localtoglobal(path.check_pos, path.localspace_pos, poly.plane)
-            contact.d = contact.d * scale
+            contact.d = f32(contact.d * scale)
             collisions.set_contact_plane(contact, False)
             collisions.contact_plane_cell_id = path.check_pos.objcell_id
             path.set_walkable(valid_pos, poly, path.localspace_z, path.localspace_pos, scale)
             return TS.ADJUSTED
         state = transition.object_info.state
-        to_global = path.localspace_pos.frame.localtoglobalvec
+        lpos = path.localspace_pos
         if state & ObjectInfoState.CONTACT:
             found0 = root.sphere_intersects_poly(sphere0, movement)
             if found0.hit:
@@ -140,9 +159,9 @@ class BSPTreeCollisions:
                     assert found1.polygon is not None
                     return self.slide_sphere(path, collisions, found1.polygon.plane.N)
                 if found1.polygon is not None:
-                    path.set_neg_poly_hit(False, to_global(found1.polygon.plane.N))
+                    path.set_neg_poly_hit(False, position_localtoglobalvec(lpos, found1.polygon.plane.N))
                 elif found0.polygon is not None:
-                    path.set_neg_poly_hit(True, to_global(found0.polygon.plane.N))
+                    path.set_neg_poly_hit(True, position_localtoglobalvec(lpos, found0.polygon.plane.N))
             return TS.OK
         found0 = root.sphere_intersects_poly(sphere0, movement)
         if state & ObjectInfoState.PATH_CLIPPED:
@@ -153,13 +172,13 @@ class BSPTreeCollisions:
                 obj, path, collisions, sphere0, curr0, found0.polygon, found0.contact_pt, scale
             )
         if found0.polygon is not None:
-            path.set_collide(to_global(found0.polygon.plane.N))
+            path.set_collide(position_localtoglobalvec(lpos, found0.polygon.plane.N))
             path.walkable_allowance = LANDING_Z
             return TS.ADJUSTED
         if sphere1 is not None:
             found1 = root.sphere_intersects_poly(sphere1, movement, None, found0.contact_pt)
             if found1.polygon is not None:
-                collisions.set_collision_normal(to_global(found1.polygon.plane.N))
+                collisions.set_collision_normal(position_localtoglobalvec(lpos, found1.polygon.plane.N))
                 return TS.COLLIDED
         return TS.OK
 
@@ -179,7 +198,11 @@ class BSPTreeCollisions:
         *not* multiplied by the scale (retail takes no scale here). The single-sphere exit
         (acclient.c:360894-360912) inlines ``add_offset_to_check_pos``; Hex-Rays shows the
         offset copied before its y and z are written, read here like the two-sphere exit
-        (acclient.c:360861-360876) that spells the same step out.
+        (acclient.c:360861-360876) that spells the same step out. The two exits round
+        differently: the two-sphere one stores the displacement and rotates it with
+        ``Position::localtoglobalvec``, the single-sphere one rotates the unstored displacement
+        with sums of its own (x, y, z terms in turn). ``rad`` is the ``float`` local
+        ``transitiona``.
 
         Retail: BSPTREE::placement_insert @ 0x00539960 (acclient.c:360778)
         """
@@ -196,13 +219,24 @@ class BSPTreeCollisions:
             hit.center_solid = False
             if root.sphere_intersects_solid_poly(valid_pos, rad, hit, center_check):
                 struck, other = valid_pos, valid_pos2
-            elif path.num_sphere <= 1 or not root.sphere_intersects_solid_poly(
-                valid_pos2, rad, hit, center_check
-            ):
+            elif path.num_sphere <= 1:
+                if tries == 0:
+                    return TS.OK
+                start, end = path.localspace_sphere[0].center, valid_pos.center
+                m = path.localspace_pos.frame.m
+                dx, dy, dz = end.x - start.x, end.y - start.y, end.z - start.z
+                offset = Vector3(
+                    dx * m[0] + dy * m[3] + dz * m[6],
+                    dx * m[1] + dy * m[4] + dz * m[7],
+                    dx * m[2] + dy * m[5] + dz * m[8],
+                )
+                path.add_offset_to_check_pos(offset)
+                return TS.ADJUSTED
+            elif not root.sphere_intersects_solid_poly(valid_pos2, rad, hit, center_check):
                 if tries == 0:
                     return TS.OK
                 offset = valid_pos.center - path.localspace_sphere[0].center
-                path.add_offset_to_check_pos(path.localspace_pos.frame.localtoglobalvec(offset))
+                path.add_offset_to_check_pos(position_localtoglobalvec(path.localspace_pos, offset))
                 return TS.ADJUSTED
             else:
                 struck, other = valid_pos2, valid_pos
@@ -231,7 +265,9 @@ class BSPTreeCollisions:
         reaches the plane at ``curr_pos`` and no touching time exists: the search falls back
         to bisection. ACE compares with 1.0 too but runs the loop body only when equal, so
         for any other time it spins to failure; and its bisection swaps the bounds and returns
-        False on convergence. The decompiled loops are followed here.
+        False on convergence. The decompiled loops are followed here. The times are doubles
+        (``time_touch``, ``ltime``, ``utime`` and the midpoint spill are 8 bytes); each placement of
+        the centre is stored as :func:`_along` describes.
 
         Retail: BSPTREE::adjust_to_plane @ 0x00539BF0 (acclient.c:360915)
         """
@@ -286,19 +322,26 @@ class BSPTreeCollisions:
         """A path-clipped body touched ``hit_poly``: COLLIDED with its global normal, unless
         ``PERFECT_CLIP``, which backs a copy of ``check_pos`` up to the last clear point
         (:meth:`adjust_to_plane`, COLLIDED without a normal if that fails), sets the normal and
-        moves ``check_pos`` by the scaled global offset (ADJUSTED).
+        moves ``check_pos`` by the scaled global offset (ADJUSTED). Without ``PERFECT_CLIP`` the
+        normal is rotated with inlined sums (x, y, z terms in turn, acclient.c:361138-361144),
+        with it by ``Position::localtoglobalvec``.
 
         Retail: BSPTREE::collide_with_pt @ 0x0053A090 (acclient.c:361123)
         """
-        to_global = path.localspace_pos.frame.localtoglobalvec
         if not obj.state & ObjectInfoState.PERFECT_CLIP:
-            collisions.set_collision_normal(to_global(hit_poly.plane.N))
+            n, m = hit_poly.plane.N, path.localspace_pos.frame.m
+            normal = Vector3(
+                m[0] * n.x + m[3] * n.y + m[6] * n.z,
+                m[1] * n.x + m[4] * n.y + m[7] * n.z,
+                m[2] * n.x + m[5] * n.y + m[8] * n.z,
+            )
+            collisions.set_collision_normal(normal)
             return TS.COLLIDED
         valid_pos = check_pos.copy()
         if not self.adjust_to_plane(valid_pos, curr_pos.copy(), hit_poly, contact_pt):
             return TS.COLLIDED
-        collisions.set_collision_normal(to_global(hit_poly.plane.N))
-        path.add_offset_to_check_pos(to_global(valid_pos.center - check_pos.center) * scale)
+        collisions.set_collision_normal(position_localtoglobalvec(path.localspace_pos, hit_poly.plane.N))
+        path.add_offset_to_check_pos(_scaled_global(path, valid_pos.center - check_pos.center, scale))
         return TS.ADJUSTED
 
     def step_sphere_down(
@@ -309,20 +352,33 @@ class BSPTreeCollisions:
         scaled global offset, make the face the contact plane (``d`` times ``scale``, not
         water, in ``check_pos``'s cell) and the walkable, ADJUSTED; else OK.
 
+        Stores (acclient.c:361214-361269): ``step·z.x`` and ``step·z.y`` are spilled to ``float``
+        and ``1/scale`` too, but ``movement.x`` divides by the unspilled reciprocal; the
+        offset rotates the unstored displacement with sums of its own (z, y, x terms in turn),
+        each row stored, then multiplied by ``scale``.
+
         Retail: BSPTREE::step_sphere_down @ 0x0053A210 (acclient.c:361176)
         """
         step = -(path.step_down_amt * path.walk_interp)
         z = path.localspace_z
         inv = 1.0 / scale
-        movement = Vector3(inv * (step * z.x), step * z.y * inv, step * z.z * inv)
+        inv32 = f32(inv)
+        sx, sy, _ = unpack3(pack3(step * z.x, step * z.y, 0.0))
+        movement = Vector3(inv * sx, sy * inv32, step * z.z * inv32)
         valid_pos = check_pos.copy()
         poly = self.root_node.find_walkable(path, valid_pos, movement, z)
         if poly is None:
             return TS.OK
-        offset = path.localspace_pos.frame.localtoglobalvec(valid_pos.center - check_pos.center) * scale
-        path.add_offset_to_check_pos(offset)
+        end, start, m = valid_pos.center, check_pos.center, path.localspace_pos.frame.m
+        dx, dy, dz = end.x - start.x, end.y - start.y, end.z - start.z
+        rotated = Vector3(
+            dz * m[6] + dy * m[3] + dx * m[0],
+            dz * m[7] + dy * m[4] + dx * m[1],
+            dz * m[8] + dy * m[5] + dx * m[2],
+        )
+        path.add_offset_to_check_pos(rotated * scale)
         contact = plane_localtoglobal(path.check_pos, path.localspace_pos, poly.plane)
-        contact.d = contact.d * scale
+        contact.d = f32(contact.d * scale)
         collisions.set_contact_plane(contact, False)
         collisions.contact_plane_cell_id = path.check_pos.objcell_id
         path.set_walkable(valid_pos, poly, z, path.localspace_pos, scale)

@@ -7,6 +7,9 @@ is the centre of its bottom disc) unless a docstring says otherwise, and ``disp`
 sphere's centre less ``low_pt``. Retail treats the cylinder as a flat-capped column: a sphere is in
 it when its centre is within the radius sum horizontally and it overlaps ``[low_pt.z,
 low_pt.z + height]`` vertically by more than EPSILON.
+
+Float32 at rest (:mod:`acphys.precision`): ``radsum`` and ``reach`` are ``float`` in retail;
+the docstrings name the other ``float`` locals each routine keeps.
 """
 
 from __future__ import annotations
@@ -16,10 +19,11 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
+from acphys.geometry.bbox import position_localtoglobal, position_localtoglobalvec
 from acphys.geometry.plane import Plane
-from acphys.geometry.sphere import Sphere
-from acphys.math.cell_id import get_block_offset
+from acphys.geometry.sphere import Sphere, _step_since_curr
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.geometry.sphere import SphereTransition
@@ -48,14 +52,15 @@ def _pick_root(a: float, b: float, disc: float) -> float:
 
 
 class CylSphere:
-    """Retail ``CCylSphere`` (acclient.h:31672): ``{Vector3 low_pt; float height; float radius}``."""
+    """Retail ``CCylSphere`` (acclient.h:31672): ``{Vector3 low_pt; float height; float radius}``;
+    the radius and height are narrowed to float32 when the cylinder is built."""
 
     __slots__ = ("height", "low_pt", "radius")
 
     def __init__(self, low_pt: Vector3, radius: float, height: float) -> None:
         self.low_pt = low_pt.copy()
-        self.radius = float(radius)
-        self.height = float(height)
+        self.radius = f32(radius)
+        self.height = f32(height)
 
     def copy(self) -> CylSphere:
         return CylSphere(self.low_pt, self.radius, self.height)
@@ -72,7 +77,7 @@ class CylSphere:
 
         Retail: CCylSphere::collides_with_sphere @ 0x0053A880 (acclient.c:361501)
         """
-        if radsum * radsum < disp.x * disp.x + disp.y * disp.y:
+        if not radsum * radsum >= disp.x * disp.x + disp.y * disp.y:
             return False
         half = self.height * 0.5
         return check_pos.radius - EPSILON + half >= abs(half - disp.z)
@@ -88,16 +93,21 @@ class CylSphere:
         otherwise it came through a cap: ``(0,0,1)`` unless ``disp`` is higher than before, then
         ``(0,0,-1)``, always definite.
 
+        The old offset stays in registers for the horizontal test (summed y first) and the normal;
+        its z is the ``float`` local ``old_disp_8`` (acclient.c:361667-361670).
+
         Retail: CCylSphere::normal_of_collision @ 0x0053AB50 (acclient.c:361651)
         """
-        old = path.global_curr_center[sphere_num] - self.low_pt
-        if radsum * radsum < old.x * old.x + old.y * old.y:
+        curr, low = path.global_curr_center[sphere_num], self.low_pt
+        old_x, old_y = curr.x - low.x, curr.y - low.y
+        old_z = f32(curr.z - low.z)
+        if radsum * radsum < old_y * old_y + old_x * old_x:
             half = self.height * 0.5
             definite = (
-                check_pos.radius - EPSILON + half >= abs(half - old.z) or abs(old.z - disp.z) <= EPSILON
+                check_pos.radius - EPSILON + half >= abs(half - old_z) or abs(old_z - disp.z) <= EPSILON
             )
-            return definite, Vector3(old.x, old.y, 0.0)
-        if disp.z - old.z <= 0.0:
+            return definite, Vector3(old_x, old_y, 0.0)
+        if disp.z - old_z <= 0.0:
             return True, Vector3(0.0, 0.0, 1.0)
         return True, Vector3(0.0, 0.0, -1.0)
 
@@ -112,9 +122,10 @@ class CylSphere:
         return (radius + self.height - old_z) / movement_z
 
     def _side_normal(self, curr: Vector3, offset: Vector3, reach: float) -> Vector3:
-        """The horizontal part of ``curr + offset - low_pt``, divided by ``reach`` (not normalised)."""
+        """The horizontal part of ``curr + offset - low_pt``, times ``1/reach`` (``Vector3::operator/=``,
+        not normalised)."""
         point = curr + offset - self.low_pt
-        return Vector3(point.x, point.y, 0.0) / reach
+        return Vector3(point.x, point.y, 0.0) * (1.0 / reach)
 
     def collide_with_point(
         self,
@@ -137,6 +148,12 @@ class CylSphere:
         usable root). A time outside ``[0, 1]``, or no root for a definite side hit, is COLLIDED.
         The adjustment is ``curr[0] + movement·t - check_pos.center``.
 
+        ``float`` locals (acclient.c:361780-361793, 361813-361949): the movement (see
+        :func:`acphys.geometry.sphere._step_since_curr`), the old offset from ``low_pt``, ``reach``
+        and, in the indefinite case, ``reach²``; every offset is ``movement`` times the time spilled
+        to ``float``, except the indefinite cap offset, which multiplies by the double time. The
+        ``[0, 1]`` test reads the double time.
+
         Retail: CCylSphere::collide_with_point @ 0x0053ACB0 (acclient.c:361704)
         """
         definite, normal = self.normal_of_collision(path, check_pos, disp, radsum, sphere_num)
@@ -146,36 +163,40 @@ class CylSphere:
             collisions.set_collision_normal(normal)
             return TS.COLLIDED
         curr = path.global_curr_center[0]
-        movement = check_pos.center - curr + path.get_curr_pos_check_pos_block_offset()
+        movement = Vector3(*_step_since_curr(path, check_pos.center, curr))
+        mx, my, mz = movement.x, movement.y, movement.z
         old = curr - self.low_pt
-        reach = radsum + EPSILON
-        a = movement.x * movement.x + movement.y * movement.y
-        b = -(movement.x * old.x + movement.y * old.y)
-        disc = b * b - (old.x * old.x + old.y * old.y - reach * reach) * a
+        ox, oy = old.x, old.y
+        reach = f32(radsum + EPSILON)
+        a = my * my + mx * mx
+        b = -(my * oy + mx * ox)
         if not definite:
-            if abs(movement.z) < EPSILON:
+            if abs(mz) < EPSILON:
                 return TS.COLLIDED
-            normal = Vector3(0.0, 0.0, -1.0 if movement.z > 0.0 else 1.0)
-            time = self._cap_time(movement.z, old.z, check_pos.radius)
+            normal = Vector3(0.0, 0.0, -1.0 if mz > 0.0 else 1.0)
+            time = self._cap_time(mz, old.z, check_pos.radius)
             offset = movement * time
-            ox, oy = offset.x + old.x, offset.y + old.y
-            if ox * ox + oy * oy >= reach * reach:
+            reach2 = f32(reach * reach)
+            px, py = offset.x + ox, offset.y + oy
+            if py * py + px * px >= reach2:
                 if abs(a) < EPSILON:
                     return TS.COLLIDED
+                disc = b * b - (oy * oy + ox * ox - reach2) * a
                 if disc >= 0.0 and a > EPSILON:
                     time = _pick_root(a, b, disc)
-                    offset = movement * time
+                    offset = movement * f32(time)
                 normal = self._side_normal(curr, offset, reach)
         elif normal.z != 0.0:
-            if abs(movement.z) < EPSILON:
+            if abs(mz) < EPSILON:
                 return TS.COLLIDED
-            time = self._cap_time(movement.z, old.z, check_pos.radius)
-            offset = movement * time
+            time = self._cap_time(mz, old.z, check_pos.radius)
+            offset = movement * f32(time)
         else:
+            disc = b * b - (oy * oy + ox * ox - reach * reach) * a
             if disc < 0.0 or a < EPSILON:
                 return TS.COLLIDED
             time = _pick_root(a, b, disc)
-            offset = movement * time
+            offset = movement * f32(time)
             normal = self._side_normal(curr, offset, reach)
         if time < 0.0 or time > 1.0:
             return TS.COLLIDED
@@ -224,7 +245,7 @@ class CylSphere:
         _, normal = self.normal_of_collision(path, check_pos, disp, radsum, 0)
         if normal.normalize_check_small():
             return TS.COLLIDED
-        if transition.step_up(path.localspace_pos.frame.localtoglobalvec(normal)):
+        if transition.step_up(position_localtoglobalvec(path.localspace_pos, normal)):
             return TS.OK
         return path.step_up_slide(obj, collisions)
 
@@ -244,7 +265,9 @@ class CylSphere:
         out of ``[-0.1, walk_interp)``. Otherwise the plane ``z = low_pt.z + height`` (through
         ``check_pos``'s raised bottom) is set with ``is_water`` 1, whatever its walkability.
         Hex-Rays shows the cylinder pointer for the sphere-1 test as the entry ``ecx``
-        (acclient.c:361594-361602, 361607): that is ``this``.
+        (acclient.c:361594-361602, 361607): that is ``this``. The rise is stored as a ``float``
+        (``radsuma``) before the contact point and the offset are built from it; the interp test
+        reads the double rise (acclient.c:361607-361634).
 
         Retail: CCylSphere::step_sphere_down @ 0x0053A9B0 (acclient.c:361573)
         """
@@ -257,15 +280,16 @@ class CylSphere:
         step = path.step_down_amt * path.walk_interp
         if abs(step) < EPSILON:
             return TS.COLLIDED
-        rise = self.height + check_pos.radius - disp.z
-        interp = (1.0 - rise / step) * path.walk_interp
+        rise_reg = self.height + check_pos.radius - disp.z
+        interp = (1.0 - rise_reg / step) * path.walk_interp
         if interp >= path.walk_interp or interp < _MIN_WALK_INTERP:
             return TS.COLLIDED
+        rise = f32(rise_reg)
         c = check_pos.center
         contact = Vector3(c.x, c.y, rise - check_pos.radius + c.z)
         collisions.set_contact_plane(Plane.from_point(_UP, contact), True)
         collisions.contact_plane_cell_id = path.check_pos.objcell_id
-        path.walk_interp = interp
+        path.walk_interp = f32(interp)
         path.add_offset_to_check_pos(Vector3(0.0, 0.0, rise), check_pos.radius)
         return TS.ADJUSTED
 
@@ -295,20 +319,21 @@ class CylSphere:
         """``intersects_sphere`` for this cylinder local to ``p`` at ``scale``, in ``check_pos``'s block.
 
         First caches the path's spheres in ``p``'s frame at scale 1.0 (the ``localspace_pos``
-        that :meth:`step_sphere_up` rotates by).
+        that :meth:`step_sphere_up` rotates by). ``low_pt`` goes through ``Position::localtoglobal``
+        (:func:`~acphys.geometry.bbox.position_localtoglobal`).
 
         Retail: CCylSphere::intersects_sphere @ 0x0053B8F0 (acclient.c:362243)
         """
         path = transition.sphere_path
         path.cache_localspace_sphere(p, 1.0)
-        low_pt = p.frame.localtoglobal(self.low_pt * scale)
-        low_pt = low_pt + get_block_offset(path.check_pos.objcell_id, p.objcell_id)
+        low_pt = position_localtoglobal(path.check_pos, p, self.low_pt * scale)
         return CylSphere(low_pt, scale * self.radius, scale * self.height).intersects_sphere(transition)
 
     def intersects_sphere(self, transition: SphereTransition) -> TransitionState:
         """Test the moving spheres (``global_sphere``) against this cylinder and respond.
 
-        ``radsum`` is the radius sum less EPSILON. Dispatch (acclient.c:362083-362240): placement
+        ``radsum`` is the radius sum less EPSILON, a ``float`` (acclient.c:362082). Dispatch
+        (acclient.c:362083-362240): placement
         or an ethereal obstruction and ``check_walkable`` only report overlap (COLLIDED);
         ``step_down`` steps onto the top (creatures too: retail has no creature test here); before a
         collision is flagged, a body in contact steps up (sphere 0) or slides (sphere 1), a
@@ -322,7 +347,7 @@ class CylSphere:
         collisions = transition.collision_info
         moving = path.global_sphere[0]
         disp = moving.center - self.low_pt
-        radsum = self.radius - EPSILON + moving.radius
+        radsum = f32(self.radius - EPSILON + moving.radius)
         second = path.global_sphere[1] if path.num_sphere > 1 else None
         disp2 = second.center - self.low_pt if second is not None else Vector3()
 
@@ -367,23 +392,24 @@ class CylSphere:
         COLLIDED for no vertical movement (to EPSILON) or an interp outside ``[-0.1, walk_interp)``;
         OK (no response at all) when at that time it would be horizontally outside ``radsum``, which
         is every hit on the side. Otherwise the top cap becomes the contact plane (``is_water`` 1,
-        no walkability test) and ADJUSTED.
+        no walkability test) and ADJUSTED. The offset is the movement times the time spilled to
+        ``float``; the interp reads the double time (acclient.c:362206-362232).
         """
         movement = path.global_curr_center[0] - moving.center - path.get_curr_pos_check_pos_block_offset()
         if abs(movement.z) < EPSILON:
             return TS.COLLIDED
         t = (self.height + moving.radius - disp.z) / movement.z
-        offset = movement * t
+        offset = movement * f32(t)
         ox, oy = offset.x + disp.x, offset.y + disp.y
-        if radsum * radsum < ox * ox + oy * oy:
+        if radsum * radsum < oy * oy + ox * ox:
             return TS.OK
         interp = (1.0 - t) * path.walk_interp
         if not (interp < path.walk_interp and interp >= _MIN_WALK_INTERP):
             return TS.COLLIDED
         contact = moving.center + offset
-        contact.z -= moving.radius
+        contact.z = f32(contact.z - moving.radius)
         collisions.set_contact_plane(Plane.from_point(_UP, contact), True)
         collisions.contact_plane_cell_id = path.check_pos.objcell_id
-        path.walk_interp = interp
+        path.walk_interp = f32(interp)
         path.add_offset_to_check_pos(offset, moving.radius)
         return TS.ADJUSTED

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON
 from acphys.math.vector import Vector3, zero_vector
+from acphys.precision import f32
 
 _new = object.__new__
 
@@ -24,27 +25,28 @@ class Sidedness(IntEnum):
 
 
 class Ray:
-    """Retail ``Ray`` (acclient.h:32617): start point ``pt``, direction ``dir``, ``length``."""
+    """Retail ``Ray`` (acclient.h:32617): start point ``pt``, direction ``dir``, ``length`` (a ``float``)."""
 
     __slots__ = ("dir", "length", "pt")
 
     def __init__(self, pt: Vector3, direction: Vector3, length: float = 0.0) -> None:
         self.pt = pt.copy()
         self.dir = direction.copy()
-        self.length = float(length)
+        self.length = f32(length)
 
     def __repr__(self) -> str:
         return f"Ray(pt={self.pt!r}, dir={self.dir!r}, length={self.length!r})"
 
 
 class Plane:
-    """Retail ``Plane`` (acclient.h): ``{Vector3 N; float d}``."""
+    """Retail ``Plane`` (acclient.h:30682): ``{Vector3 N; float d}``; ``d`` is narrowed to float32
+    when the plane is built, as every store into it is."""
 
     __slots__ = ("N", "d")
 
     def __init__(self, normal: Vector3 | None = None, d: float = 0.0) -> None:
         self.N = normal.copy() if normal is not None else zero_vector()
-        self.d = float(d)
+        self.d = f32(d)
 
     @classmethod
     def horizontal(cls, z: float) -> Plane:
@@ -69,11 +71,6 @@ class Plane:
         self.N.set(other.N)
         self.d = other.d
 
-    def dot_point(self, point: Vector3) -> float:
-        """Signed distance ``N·point + d`` of ``point`` from the plane (for a unit normal)."""
-        n = self.N
-        return n.x * point.x + n.y * point.y + n.z * point.z + self.d
-
     def compute_time_of_intersection(self, ray: Ray) -> tuple[bool, float | None]:
         """Where along ``ray`` (in units of ``ray.dir``) the plane is crossed.
 
@@ -94,14 +91,15 @@ class Plane:
         """Give the displacement ``offset`` the z that keeps it in the plane: ``-(Nx·x + Ny·y) / Nz``.
 
         Retail evaluates it as ``-(x·Nx + y·Ny + 0·Nz + d)/Nz - (1/Nz)·(-d)``, so ``d`` cancels only
-        up to rounding; that expression is kept. Nothing happens when ``|N.z| <= EPSILON``.
+        up to rounding; that expression is kept, and stored into the float ``offset.z``. Nothing
+        happens when ``|N.z| <= EPSILON``.
 
         Retail: Plane::snap_to_plane @ 0x00509C50 (acclient.c:311526)
         """
         n = self.N
         if abs(n.z) > EPSILON:
             inv = 1.0 / n.z
-            offset.z = -(offset.y * n.y + offset.x * n.x + n.z * 0.0 + self.d) * inv - inv * -self.d
+            offset.z = f32(-(offset.y * n.y + offset.x * n.x + n.z * 0.0 + self.d) * inv - inv * -self.d)
 
     def set_height(self, vc: Vector3) -> bool:
         """Move the point ``vc`` vertically onto the plane; False (``vc`` untouched) if ``|N.z| <= EPSILON``.
@@ -111,7 +109,7 @@ class Plane:
         n = self.N
         if abs(n.z) <= EPSILON:
             return False
-        vc.z = -((vc.y * n.y + vc.x * n.x + self.d) / n.z)
+        vc.z = f32(-((vc.y * n.y + vc.x * n.x + self.d) / n.z))
         return True
 
     def which_side2(self, v: Vector3, bias: float, epsilon: float) -> Sidedness:

@@ -5,6 +5,10 @@ The sweep routines take the moving object's path (``SPHEREPATH``), its collision
 :class:`acphys.flags.TransitionState`. ``self`` is the obstacle sphere in global space unless a
 docstring says otherwise. Retail's x87 sqrt of a negative number yields NaN, which then fails
 every comparison; :func:`_x87_sqrt` keeps that behaviour where retail does not guard the root.
+
+Float32 at rest (:mod:`acphys.precision`): ``radsum`` and ``reach`` are ``float`` parameters or
+locals in retail, so they are narrowed where they are made; displacements are ``Vector3`` stores
+unless a docstring says which parts stay in registers.
 """
 
 from __future__ import annotations
@@ -14,9 +18,10 @@ from typing import TYPE_CHECKING, Protocol
 
 from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
+from acphys.geometry.bbox import position_localtoglobal
 from acphys.geometry.plane import Plane
-from acphys.math.cell_id import get_block_offset
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, unpack3
 
 _new = object.__new__
 
@@ -39,6 +44,15 @@ def _x87_sqrt(value: float) -> float:
     return math.sqrt(value) if value >= 0.0 else math.nan
 
 
+def _step_since_curr(path: SpherePath, center: Vector3, curr: Vector3) -> tuple[float, float, float]:
+    """``center - curr`` plus the curr-to-check block offset, the three ``float`` locals the slides
+    and point collisions build: the x and y differences stay in registers, the z difference is
+    stored first (acclient.c:358760-358765, 358944-358951, 358844-358852)."""
+    block = path.get_curr_pos_check_pos_block_offset()
+    dz = f32(center.z - curr.z)
+    return unpack3(pack3(block.x + (center.x - curr.x), block.y + (center.y - curr.y), block.z + dz))
+
+
 def _slide_plane(collisions: CollisionInfo) -> Plane:
     """The plane a slide runs along: the contact plane if valid, else the last known one."""
     if collisions.contact_plane_valid:
@@ -57,18 +71,19 @@ class SphereTransition(Protocol):
 
 
 class Sphere:
-    """Retail ``CSphere`` (acclient.h): ``{Vector3 center; float radius}``."""
+    """Retail ``CSphere`` (acclient.h:31107): ``{Vector3 center; float radius}``; the radius is
+    narrowed to float32 when the sphere is built."""
 
     __slots__ = ("center", "radius")
 
     def __init__(self, center: Vector3, radius: float) -> None:
         self.center = center.copy()
-        self.radius = float(radius)
+        self.radius = f32(radius)
 
     @classmethod
     def owning(cls, center: Vector3, radius: float) -> Sphere:
         """A sphere that takes ``center`` itself, uncopied: for a vector the caller has just
-        built and keeps no other reference to. ``radius`` must already be a float."""
+        built and keeps no other reference to. ``radius`` must already be a float32."""
         sphere = _new(cls)
         sphere.center = center
         sphere.radius = radius
@@ -112,12 +127,13 @@ class Sphere:
         """The fraction of ``movement`` at which a sphere ``disp`` from an obstacle first touches it.
 
         -1.0 when already within ``radsum`` (to EPSILON), not moving, or never reaching it. Of
-        the two roots ``(b ∓ √D)/a`` retail takes the smaller unless it is negative.
+        the two roots ``(b ∓ √D)/a`` retail takes the smaller unless it is negative. ``radsum``
+        is a ``float`` parameter.
 
         Retail: CSphere::find_time_of_collision @ 0x005368F0 (acclient.c:358480)
         """
         a = movement.length_squared()
-        b = -disp.dot(movement)
+        b = -(disp.z * movement.z + disp.y * movement.y + movement.x * disp.x)
         c = disp.length_squared() - radsum * radsum
         if c < EPSILON or a < EPSILON:
             return -1.0
@@ -135,9 +151,10 @@ class Sphere:
         Retail: CSphere::sphere_intersects_ray @ 0x005377A0 (acclient.c:359009)
         """
         d = ray.pt - self.center
-        a = ray.dir.length_squared()
-        b = -d.dot(ray.dir)
-        c = d.length_squared() - self.radius * self.radius
+        r = ray.dir
+        a = r.z * r.z + r.y * r.y + r.x * r.x
+        b = -(d.z * r.z + d.y * r.y + d.x * r.x)
+        c = d.x * d.x + d.z * d.z + d.y * d.y - self.radius * self.radius
         if c <= 0.0 or a < EPSILON:
             return None
         disc = b * b - c * a
@@ -151,19 +168,19 @@ class Sphere:
     def intersects_sphere_placed(
         self, p: Position, scale: float, transition: SphereTransition, is_creature: bool
     ) -> TransitionState:
-        """``intersects_sphere`` for this sphere local to ``p`` at ``scale``, in ``check_pos``'s block.
+        """``intersects_sphere`` for this sphere local to ``p`` at ``scale``, in ``check_pos``'s block
+        (``Position::localtoglobal``, :func:`~acphys.geometry.bbox.position_localtoglobal`).
 
         Retail: CSphere::intersects_sphere @ 0x00537FD0 (acclient.c:359389)
         """
-        check_pos = transition.sphere_path.check_pos
-        center = p.frame.localtoglobal(self.center * scale)
-        center = center + get_block_offset(check_pos.objcell_id, p.objcell_id)
-        return Sphere.owning(center, self.radius * scale).intersects_sphere(transition, is_creature)
+        center = position_localtoglobal(transition.sphere_path.check_pos, p, self.center * scale)
+        return Sphere.owning(center, f32(scale * self.radius)).intersects_sphere(transition, is_creature)
 
     def intersects_sphere(self, transition: SphereTransition, is_creature: bool) -> TransitionState:
         """Test the moving spheres (``global_sphere``) against this obstacle and respond.
 
-        ``radsum`` is the radius sum less EPSILON. Dispatch (acclient.c:359211-359385): an
+        ``radsum`` is the radius sum less EPSILON, a ``float`` (acclient.c:359211). Dispatch
+        (acclient.c:359211-359385): an
         ethereal obstruction or placement only reports overlap; ``step_down`` steps onto the
         sphere (not for creatures); ``check_walkable`` only reports overlap; before a collision
         is flagged, a body in contact steps up (sphere 0) or slides (sphere 1), a path-clipped
@@ -184,14 +201,14 @@ class Sphere:
         collisions = transition.collision_info
         moving = path.global_sphere[0]
         disp = moving.center - self.center
-        radsum = self.radius + moving.radius - EPSILON
+        radsum = f32(self.radius + moving.radius - EPSILON)
         second = path.global_sphere[1] if path.num_sphere > 1 else None
 
         def second_collides() -> bool:
             return second is not None and self.collides_with_sphere(second.center - self.center, radsum)
 
         if path.obstruction_ethereal or path.insert_type == 1:
-            if radsum * radsum >= disp.length_squared() or second_collides():
+            if radsum * radsum >= disp.y * disp.y + disp.x * disp.x + disp.z * disp.z or second_collides():
                 return TS.COLLIDED
             return TS.OK
         if path.step_down:
@@ -225,7 +242,7 @@ class Sphere:
             return TS.OK
         if not (self.collides_with_sphere(disp, radsum) or second_collides()):
             return TS.OK
-        return self._rewind_onto_sphere(path, collisions, moving, disp, radsum + EPSILON)
+        return self._rewind_onto_sphere(path, collisions, moving, disp, f32(radsum + EPSILON))
 
     def _rewind_onto_sphere(
         self, path: SpherePath, collisions: CollisionInfo, moving: Sphere, disp: Vector3, reach: float
@@ -233,16 +250,20 @@ class Sphere:
         """The ``collide`` arm of ``intersects_sphere`` (acclient.c:359321-359380).
 
         Back sphere 0 up along its movement since ``curr_pos`` until it touches this sphere at
-        ``reach`` (radsum + EPSILON). Retail's quirk: it compares the root's *numerator*
+        ``reach`` (radsum + EPSILON, a ``float``). Retail's quirk: it compares the root's *numerator*
         ``√D + b`` with 1.0 and, when larger, uses ``2b - (√D + b)`` = ``b - √D`` instead. An
-        unguarded negative discriminant gives NaN, which fails the interp test: COLLIDED.
+        unguarded negative discriminant gives NaN, which fails the interp test: COLLIDED. The
+        dot products sum z, y, x for ``|movement|²`` and y, x, z for the others
+        (acclient.c:359333-359340); the normal is ``(disp + movement·t)`` times ``1/reach``
+        (``Vector3::operator/=``).
         """
         movement = path.global_curr_center[0] - moving.center - path.get_curr_pos_check_pos_block_offset()
-        a = movement.length_squared()
-        b = -movement.dot(disp)
+        a = movement.z * movement.z + movement.y * movement.y + movement.x * movement.x
+        b = -(movement.y * disp.y + movement.x * disp.x + movement.z * disp.z)
         if abs(a) < EPSILON:
             return TS.COLLIDED
-        numerator = _x87_sqrt(b * b - (disp.length_squared() - reach * reach) * a) + b
+        disp2 = disp.y * disp.y + disp.x * disp.x + disp.z * disp.z
+        numerator = _x87_sqrt(b * b - (disp2 - reach * reach) * a) + b
         if numerator > 1.0:
             numerator = b + b - numerator
         t = numerator / a
@@ -250,12 +271,12 @@ class Sphere:
         if not (interp < path.walk_interp and interp >= _MIN_WALK_INTERP):
             return TS.COLLIDED
         movement = movement * t
-        normal = (disp + movement) / reach
+        normal = (movement + disp) * (1.0 / reach)
         if not path.is_walkable_allowable(normal.z):
             return TS.OK
         collisions.set_contact_plane(Plane.from_point(normal, moving.center - normal * moving.radius), True)
         collisions.contact_plane_cell_id = path.check_pos.objcell_id
-        path.walk_interp = interp
+        path.walk_interp = f32(interp)
         path.add_offset_to_check_pos(movement, moving.radius)
         return TS.ADJUSTED
 
@@ -277,33 +298,39 @@ class Sphere:
         reaches; if that exceeds ``radsum + EPSILON`` the root is NaN and retail goes on to set a
         NaN contact plane, which is kept here.
 
+        ``float`` locals (acclient.c:358647-358697): the squares ``disp.x²`` and ``disp.y²``, the
+        step ``step_down_amt·walk_interp`` (its EPSILON test reads the register), ``reach``
+        (multiplied by its own register value under the root), and the drop ``step·t``; the
+        interp stays double until it is stored into the path. The resting normal's z is scaled
+        from the unstored ``drop + disp.z``.
+
         Retail: CSphere::step_sphere_down @ 0x00536D20 (acclient.c:358615)
         """
-        horizontal2 = disp.x * disp.x + disp.y * disp.y
-        if radsum * radsum < disp.z * disp.z + horizontal2:
+        hx, hy, _ = unpack3(pack3(disp.x * disp.x, disp.y * disp.y, 0.0))
+        if radsum * radsum < disp.z * disp.z + hx + hy:
             if path.num_sphere <= 1:
                 return TS.OK
             if not self.collides_with_sphere(path.global_sphere[1].center - self.center, radsum):
                 return TS.OK
-        step = path.step_down_amt * path.walk_interp
-        if abs(step) < EPSILON:
+        step_reg = path.step_down_amt * path.walk_interp
+        if abs(step_reg) < EPSILON:
             return TS.COLLIDED
-        reach = radsum + EPSILON
-        t = (_x87_sqrt(reach * reach - horizontal2) - disp.z) / step
+        step = f32(step_reg)
+        reach_reg = radsum + EPSILON
+        reach = f32(reach_reg)
+        t = (_x87_sqrt(reach_reg * reach - (hx + hy)) - disp.z) / step
         interp = (1.0 - t) * path.walk_interp
         if interp >= path.walk_interp or interp < _MIN_WALK_INTERP:
             return TS.COLLIDED
-        drop = step * t
-        disp.z += drop
+        drop = f32(step * t)
+        rise = drop + disp.z
         inv = 1.0 / reach
-        disp.x *= inv
-        disp.y *= inv
-        disp.z *= inv
-        if disp.z <= path.walkable_allowance:
+        disp.x, disp.y, disp.z = unpack3(pack3(inv * disp.x, inv * disp.y, rise * inv))
+        if rise * inv <= path.walkable_allowance:
             return TS.OK
         collisions.set_contact_plane(Plane.from_point(disp, self.center + disp * self.radius), True)
         collisions.contact_plane_cell_id = path.check_pos.objcell_id
-        path.walk_interp = interp
+        path.walk_interp = f32(interp)
         path.add_offset_to_check_pos(Vector3(0.0, 0.0, drop), check_pos.radius)
         return TS.ADJUSTED
 
@@ -314,7 +341,8 @@ class Sphere:
 
         Too high (``step_up_height < radsum + EPSILON - disp.z``) slides sphere 0 along it;
         otherwise ``CTransition::step_up`` with the (unnormalised) normal from this centre to
-        sphere 0's current centre, and a failed step falls back to ``step_up_slide``.
+        sphere 0's current centre, and a failed step falls back to ``step_up_slide``. The height
+        test reads ``reach`` from the register; the slide gets it as a ``float``.
 
         Retail: CSphere::step_sphere_up @ 0x00537900 (acclient.c:359071)
         """
@@ -322,7 +350,7 @@ class Sphere:
         path = transition.sphere_path
         if transition.object_info.step_up_height < reach - disp.z:
             obj, collisions = transition.object_info, transition.collision_info
-            return self.slide_sphere_skid(obj, path, collisions, disp, reach, 0)
+            return self.slide_sphere_skid(obj, path, collisions, disp, f32(reach), 0)
         if transition.step_up(path.global_curr_center[0] - self.center):
             return TS.OK
         return path.step_up_slide(transition.object_info, transition.collision_info)
@@ -364,6 +392,11 @@ class Sphere:
         ``[EPSILON, 1]``, COLLIDED. The decompiled call for sphere 1 (acclient.c:359308) passes
         an uninitialised register for ``radsum``; the caller's radsum is the only value in reach.
 
+        ``reach`` is a ``float``; the offset ``movement·t - movement`` keeps ``movement.x·t`` in a
+        register but stores ``movement.y·t`` and ``movement.z·t``, and the normal is built from the
+        offset's unstored x and y, with only ``offset.x + center.x`` stored on the way
+        (acclient.c:358839-358880).
+
         Retail: CSphere::collide_with_point @ 0x00537230 (acclient.c:358807)
         """
         curr = path.global_curr_center[sphere_num]
@@ -372,13 +405,21 @@ class Sphere:
             if not normal.normalize_check_small():
                 collisions.set_collision_normal(normal)
             return TS.COLLIDED
-        reach = radsum + EPSILON
-        movement = check_pos.center - curr + path.get_curr_pos_check_pos_block_offset()
+        reach = f32(radsum + EPSILON)
+        movement = _new(Vector3)
+        movement.x, movement.y, movement.z = mx, my, mz = _step_since_curr(path, check_pos.center, curr)
         t = self.find_time_of_collision(movement, curr - self.center, reach)
         if t < EPSILON or t > 1.0:
             return TS.COLLIDED
-        offset = movement * t - movement
-        collisions.set_collision_normal((offset + check_pos.center - self.center) * (1.0 / reach))
+        ox = mx * t - mx
+        ty, tz, _ = unpack3(pack3(my * t, mz * t, 0.0))
+        oy, oz = ty - my, tz - mz
+        offset = Vector3(ox, oy, oz)
+        c, o = check_pos.center, self.center
+        nx = f32(f32(ox + c.x) - o.x)
+        inv = 1.0 / reach
+        normal = Vector3(nx * inv, (oy + c.y - o.y) * inv, (offset.z + c.z - o.z) * inv)
+        collisions.set_collision_normal(normal)
         path.add_offset_to_check_pos(offset, check_pos.radius)
         return TS.ADJUSTED
 
@@ -417,29 +458,44 @@ class Sphere:
         part along the normal (SLID); facing away, ``collision_normal`` is overwritten with the
         reversed step, normalised, stored as the collision normal, and the result is COLLIDED.
 
+        Stores (acclient.c:358941-359005): the step is three ``float`` locals (see
+        :func:`_step_since_curr`); of the slide direction ``collision_normal × plane.N`` only x and
+        z are stored, y stays in a register, and its squared length is a ``float`` local whose EPSILON
+        test reads the register; the projection scales the direction by the step·direction sum
+        (y and z stored) and then by the reciprocal length (x from registers, y and z by its
+        ``float`` spill); the head-on projection length is a ``float`` local.
+
         Retail: CSphere::slide_sphere @ 0x00537440 (acclient.c:358898)
         """
-        if collision_normal.x == 0.0 and collision_normal.y == 0.0 and collision_normal.z == 0.0:
+        cn = collision_normal
+        if cn.x == 0.0 and cn.y == 0.0 and cn.z == 0.0:
             path.add_offset_to_check_pos((curr_pos - self.center) * 0.5, self.radius)
             return TS.ADJUSTED
-        collisions.set_collision_normal(collision_normal)
-        step = self.center - curr_pos + path.get_curr_pos_check_pos_block_offset()
-        plane = _slide_plane(collisions)
-        direction = collision_normal.cross(plane.N)
-        dir2 = direction.length_squared()
-        if dir2 >= EPSILON:
-            along = direction * (direction.dot(step) / dir2)
-            if along.length_squared() < EPSILON:
+        collisions.set_collision_normal(cn)
+        sx, sy, sz = _step_since_curr(path, self.center, curr_pos)
+        p = _slide_plane(collisions).N
+        dir_y = p.x * cn.z - p.z * cn.x
+        dir_z_reg = p.y * cn.x - p.x * cn.y
+        dir_x, dir_z, _ = unpack3(pack3(cn.y * p.z - cn.z * p.y, dir_z_reg, 0.0))
+        dir2_reg = dir_z_reg * dir_z + dir_y * dir_y + dir_x * dir_x
+        if dir2_reg >= EPSILON:
+            dot = dir_z * sz + dir_y * sy + dir_x * sx
+            py, pz, _ = unpack3(pack3(dir_y * dot, dir_z * dot, 0.0))
+            inv_reg = 1.0 / f32(dir2_reg)
+            inv = f32(inv_reg)
+            ax = dir_x * dot * inv_reg
+            ay, az, _ = unpack3(pack3(py * inv, pz * inv, 0.0))
+            if az * az + ay * ay + ax * ax < EPSILON:
                 return TS.COLLIDED
-            path.add_offset_to_check_pos(along - step, self.radius)
+            path.add_offset_to_check_pos(Vector3(ax - sx, ay - sy, az - sz), self.radius)
             return TS.SLID
-        if collision_normal.dot(plane.N) >= 0.0:
-            path.add_offset_to_check_pos(collision_normal * -step.dot(collision_normal), self.radius)
+        if cn.z * p.z + cn.y * p.y + p.x * cn.x >= 0.0:
+            proj = f32(sx * cn.x + sz * cn.z + sy * cn.y)
+            path.add_offset_to_check_pos(Vector3(-cn.x * proj, -cn.y * proj, -cn.z * proj), self.radius)
             return TS.SLID
-        reverse = -step
-        collision_normal.set(reverse)
-        if not collision_normal.normalize_check_small():
-            collisions.set_collision_normal(collision_normal)
+        cn.x, cn.y, cn.z = -sx, -sy, -sz
+        if not cn.normalize_check_small():
+            collisions.set_collision_normal(cn)
         return TS.COLLIDED
 
     def slide_sphere_skid(
@@ -460,6 +516,11 @@ class Sphere:
         ``!(c0 | c2)`` survives); the routine's twin (acclient.c:358973) and ACE test
         ``|projection|² < EPSILON`` -> COLLIDED there, which is the reading taken.
 
+        Stores (acclient.c:358738-358803): the direction is a ``Vector3``; the step is three
+        ``float`` locals (see :func:`_step_since_curr`); the projection is stored scaled by the
+        step·direction sum, then by the reciprocal squared length; the head-on projection length
+        is a ``float`` local.
+
         Retail: CSphere::slide_sphere @ 0x00536F40 (acclient.c:358708)
         """
         moving = path.global_sphere[sphere_num]
@@ -468,19 +529,23 @@ class Sphere:
         if normal.normalize_check_small():
             return TS.COLLIDED
         collisions.set_collision_normal(normal)
-        plane = _slide_plane(collisions)
-        direction = normal.cross(plane.N)
-        step = moving.center - curr + path.get_curr_pos_check_pos_block_offset()
-        dir2 = direction.length_squared()
+        p = _slide_plane(collisions).N
+        d = normal.cross(p)
+        sx, sy, sz = _step_since_curr(path, moving.center, curr)
+        dir2 = d.z * d.z + d.y * d.y + d.x * d.x
         if dir2 >= EPSILON:
-            along = direction * (step.dot(direction) / dir2)
-            if along.length_squared() < EPSILON:
+            dot = sz * d.z + sy * d.y + sx * d.x
+            inv = 1.0 / dir2
+            along = d * dot * inv
+            if along.z * along.z + along.y * along.y + along.x * along.x < EPSILON:
                 return TS.COLLIDED
-            path.add_offset_to_check_pos(along - step, moving.radius)
+            path.add_offset_to_check_pos(Vector3(along.x - sx, along.y - sy, along.z - sz), moving.radius)
             return TS.SLID
-        if plane.N.dot(disp) < 0.0:
+        if p.z * disp.z + p.y * disp.y + p.x * disp.x < 0.0:
             return TS.COLLIDED
-        path.add_offset_to_check_pos(normal * -step.dot(normal), moving.radius)
+        proj = f32(sz * normal.z + sy * normal.y + sx * normal.x)
+        offset = Vector3(-normal.x * proj, -normal.y * proj, -normal.z * proj)
+        path.add_offset_to_check_pos(offset, moving.radius)
         return TS.SLID
 
 

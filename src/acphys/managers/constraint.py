@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 from acphys.flags import TransientState as TS
 from acphys.math.position import Position
 from acphys.motion.move_to import position_distance
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.math.frame import Frame
@@ -57,6 +58,8 @@ class ConstraintManager:
     def constrain_to(self, p: Position, start_distance: float, max_distance: float) -> None:
         """Leash the body to ``p``: damping from ``start_distance``, nothing past ``max_distance``.
 
+        The distances are ``float`` parameters and, like the starting distance, ``float`` fields.
+
         Retail: ConstraintManager::ConstrainTo @ 0x00556240 (acclient.c:389513)
         """
         for name, value in (("start_distance", start_distance), ("max_distance", max_distance)):
@@ -64,9 +67,9 @@ class ConstraintManager:
                 raise ValueError(f"constraint {name} must be finite, got {value}")
         self.is_constrained = True
         self.constraint_pos = p.copy()
-        self.constraint_distance_start = start_distance
-        self.constraint_distance_max = max_distance
-        self.constraint_pos_offset = position_distance(p, self.physics_obj.position)
+        self.constraint_distance_start = f32(start_distance)
+        self.constraint_distance_max = f32(max_distance)
+        self.constraint_pos_offset = f32(position_distance(p, self.physics_obj.position))
 
     def unconstrain(self) -> None:
         """Drop the leash (the distances and the accumulated offset stay).
@@ -87,7 +90,8 @@ class ConstraintManager:
 
         In contact: below start unchanged; strictly between start and max
         scaled by ``(max - total) / (max - start)``; at or past max zeroed.
-        Airborne offsets pass unchanged but still count.
+        Airborne offsets pass unchanged but still count. The scale is a ``float``
+        argument and the running total a ``float`` field (acclient.c:389493-389495, 389506).
 
         Retail: ConstraintManager::adjust_offset @ 0x00556180 (acclient.c:389477)
         """
@@ -100,5 +104,5 @@ class ConstraintManager:
             if travelled >= limit:
                 offset.origin.x = offset.origin.y = offset.origin.z = 0.0
             elif travelled > start:
-                offset.origin.set(offset.origin * ((limit - travelled) / (limit - start)))
-        self.constraint_pos_offset = travelled + offset.origin.length()
+                offset.origin.set(offset.origin * f32((limit - travelled) / (limit - start)))
+        self.constraint_pos_offset = f32(offset.origin.length() + travelled)

@@ -27,8 +27,14 @@ server does), and its report call lands on a routine with no decompiled body
 (the symbol it shows, ``gmPanelUI::ListenToGlobalMessage``, is an
 identical-code-folding alias). acphys records each report on the manager, adds
 a ``detection:...`` step event to the body, and calls ``on_report`` if set.
-Retail's tables are hashes; acphys visits cylinders and detected objects in
-insertion order.
+
+The detected objects of global detection are kept, as in retail, in a
+``LongNIHash`` of 32 buckets (``InitializeGlobalDetection``, acclient.c:327214):
+an object id goes to bucket ``(id ^ id >> 16) % 32``, at the head of its chain
+(``LongNIHash::add``, acclient.c:327173-327183), so the 1 Hz pass reports them
+bucket by bucket, newest first within a bucket, not in the order they arrived.
+The cylinder table is a ``LongNIHash`` too, but its bucket count is set by a
+constructor the client lacks: acphys visits cylinders in creation order.
 """
 
 from __future__ import annotations
@@ -39,6 +45,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from acphys.geometry.sphere import Sphere
+from acphys.managers.target import LongNIHash
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.precision import f32
@@ -49,8 +56,11 @@ if TYPE_CHECKING:
 
 #: ``CheckDetection`` runs at most this often (s of ``PhysicsTimer::curr_time``, acclient.c:327688).
 DETECTION_INTERVAL = 1.0
+#: ``InitializeGlobalDetection`` makes the detected-object table with this many buckets
+#: (acclient.c:327214).
+DETECTION_OBJECTS_TABLE_SIZE = 32
 #: ``UpdateCellList`` remakes the cell list once the body is this far from where it was last made
-#: (``Position::distance >= 5.0``, acclient.c:327342).
+#: (``Position::distance >= 5.0``, acclient.c:327344).
 GLOBAL_UPDATE_DISTANCE = 5.0
 
 
@@ -133,7 +143,7 @@ class DetectionManager:
         self.on_report: DetectionCallback | None = None
         #: Global detection: the objects detected (by id, with their pending status), the cells
         #: watched and where the body was when that list was made; None until the first pass.
-        self.detection_objects: dict[int, DetectionInfo] | None = None
+        self.detection_objects: LongNIHash[DetectionInfo] | None = None
         self.num_pending_global_detect_updates = 0
         self.cell_array: CellArray | None = None
         self.last_global_update = Position()
@@ -258,7 +268,7 @@ class DetectionManager:
         """
         if self.detection_objects is not None or self.cell_array is not None:
             return False
-        self.detection_objects = {}
+        self.detection_objects = LongNIHash(DETECTION_OBJECTS_TABLE_SIZE)
         self.cell_array = CellArray(self.physobj.world)
         self.find_cell_list(detcyl, self.cell_array)
         for info in self.cell_array.cells:
@@ -307,11 +317,10 @@ class DetectionManager:
         table = self.detection_objects
         if table is None:
             return
-        known = table.get(incoming_info.object_id)
+        object_id = incoming_info.object_id
+        known = table.lookup(object_id)
         if known is None:
-            table[incoming_info.object_id] = DetectionInfo(
-                incoming_info.object_id, DetectionType(incoming_info.object_status)
-            )
+            table.add(DetectionInfo(object_id, DetectionType(incoming_info.object_status)), object_id)
             self.num_pending_global_detect_updates += 1
             return
         if incoming_info.object_status == DetectionType.ENTERED:
@@ -322,7 +331,7 @@ class DetectionManager:
                 known.object_status = DetectionType.ENTERED
                 self.num_pending_global_detect_updates += 1
         elif known.object_status == DetectionType.ENTERED:
-            del table[incoming_info.object_id]
+            table.remove(object_id)
             self._one_less_pending()
         else:
             known.object_status = DetectionType.LEFT
@@ -336,16 +345,19 @@ class DetectionManager:
         """Report every detected object with a pending Entered or Left; Left ones are forgotten,
         the others settle to NoChange.
 
+        The objects are visited in the table's order: bucket by bucket, each newest first
+        (``LongNIHashIter``, acclient.c:327054, 327406-327423).
+
         Retail: DetectionManager::ReportGlobalDetection @ 0x00519BF0 (acclient.c:327394)
         """
         table = self.detection_objects
         if table is None:
             return
-        for object_id, info in list(table.items()):
+        for info in table:
             if info.object_status in (DetectionType.ENTERED, DetectionType.LEFT):
                 self.report_detection(context_id, info)
             if info.object_status == DetectionType.LEFT:
-                del table[object_id]
+                table.remove(info.object_id)
             else:
                 info.object_status = DetectionType.NO_CHANGE
 

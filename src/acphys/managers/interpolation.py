@@ -25,23 +25,26 @@ from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.motion.move_to import position_distance
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
 
-#: ``MAX_INTERPOLATED_VELOCITY`` (acclient_data.h:2589): the speed when the body's own is ~0.
+#: ``MAX_INTERPOLATED_VELOCITY`` (``const float``, acclient_data.h:2589): the speed when the body's own is ~0.
 MAX_INTERPOLATED_VELOCITY: float = 7.5
-#: ``BIG_DISTANCE`` (acclient_data.h:2590): ``original_distance`` with no node under way.
+#: ``BIG_DISTANCE`` (``const float``, acclient_data.h:2590): ``original_distance`` with no node under way.
 BIG_DISTANCE: float = 999999.0
-#: A node is reached within this distance (acclient.c:389057, 389217, 389258).
-DESIRED_DISTANCE: float = 0.050000001
+#: A node is reached within this distance, the float32 0.05 (acclient.c:389057, 389217, 389258).
+DESIRED_DISTANCE: float = f32(0.050000001)
 #: The queue never holds more than this many nodes after a glide is queued (acclient.c:389084).
 MAX_QUEUE_LENGTH: int = 20
 #: Steps between progress audits (acclient.c:389244).
 AUDIT_FRAMES: int = 5
-#: The least fraction of the possible closing rate an audit accepts (acclient.c:389248).
-MIN_PROGRESS_RATIO: float = 0.30000001
-#: A node failing its audit this close counts as reached (acclient.c:389270).
+#: The least fraction of the possible closing rate an audit accepts, the float32 0.3 (acclient.c:389248).
+MIN_PROGRESS_RATIO: float = f32(0.30000001)
+#: A node failing its audit this close counts as reached (acclient.c:389270). The decompilation's
+#: ``0.2`` may be the double or the float32 constant: against the float ``curr_distance`` both
+#: compare alike (float32(0.2) is the next float32 above 0.2).
 NEAR_ENOUGH: float = 0.2
 #: ``node_fail_counter`` set by a blip (acclient.c:389164); above 3 ``UseTime`` snaps (389302).
 BLIP_FAIL_COUNT: int = 4
@@ -105,6 +108,9 @@ class InterpolationManager:
         fewer than 20 remain, and ``p`` is queued. A kept heading replaces the
         node's heading with the body's.
 
+        The distance tested against the blip distance is a ``float`` local; the
+        0.05-m tests compare the unnarrowed distances (acclient.c:389054-389062).
+
         Retail: InterpolationManager::InterpolateTo @ 0x00555B20 (acclient.c:389016)
         """
         if not p.frame.origin.is_finite():
@@ -112,7 +118,7 @@ class InterpolationManager:
         obj = self.physics_obj
         queue = self.position_queue
         reference = queue[-1] if queue else obj.position
-        if position_distance(reference, p) > obj.get_autonomy_blip_distance():
+        if f32(position_distance(reference, p)) > obj.get_autonomy_blip_distance():
             self._append(p)
             self.node_fail_counter = BLIP_FAIL_COUNT
             return
@@ -160,7 +166,7 @@ class InterpolationManager:
         it. With none left: ``original_distance`` is reset, and a success stops
         interpolating while a failure remembers the popped node as the
         ``blipto_position`` (``use_time`` then teleports there, the failure
-        count being above zero).
+        count being above zero). ``original_distance`` is a ``float`` field.
 
         Retail: InterpolationManager::NodeCompleted @ 0x005559A0 (acclient.c:388881)
         """
@@ -169,7 +175,7 @@ class InterpolationManager:
         queue = self.position_queue
         done = queue.popleft() if queue else None
         if queue:
-            self.original_distance = position_distance(self.physics_obj.position, queue[0])
+            self.original_distance = f32(position_distance(self.physics_obj.position, queue[0]))
             return
         self.original_distance = BIG_DISTANCE
         if success:
@@ -192,6 +198,11 @@ class InterpolationManager:
         heading is reset to 0 (no turn). An origin within 0.05 m completes the
         node but is still applied.
 
+        ``curr_distance``, ``my_max_speed``, ``progress_made``, the step length, the
+        adjustment's length and the scale are ``float`` locals, as are the
+        ``progress_quantum`` and ``original_distance`` fields; the two 0.05-m tests read
+        the distances before they are narrowed (acclient.c:389215-389263).
+
         Retail: InterpolationManager::adjust_offset @ 0x00555D30 (acclient.c:389177)
         """
         queue = self.position_queue
@@ -199,17 +210,18 @@ class InterpolationManager:
         if not queue or not obj.transient_state & TS.CONTACT:
             return
         head = queue[0]
-        curr_distance = position_distance(obj.position, head)
-        if curr_distance < DESIRED_DISTANCE:
+        distance = position_distance(obj.position, head)
+        if distance < DESIRED_DISTANCE:
             self.node_completed(True)
             return
-        max_speed = obj.get_minterp().get_adjusted_max_speed() * 2.0
+        curr_distance = f32(distance)
+        max_speed = f32(obj.get_minterp().get_adjusted_max_speed() * 2.0)
         if max_speed < EPSILON:
             max_speed = MAX_INTERPOLATED_VELOCITY
         self.frame_counter += 1
-        self.progress_quantum += quantum
+        self.progress_quantum = f32(quantum + self.progress_quantum)
         if self.frame_counter >= AUDIT_FRAMES:
-            progress_made = self.original_distance - curr_distance
+            progress_made = f32(self.original_distance - curr_distance)
             if obj.get_sticky_object_id() or (
                 progress_made >= EPSILON
                 and progress_made / self.progress_quantum / max_speed >= MIN_PROGRESS_RATIO
@@ -225,12 +237,13 @@ class InterpolationManager:
                     self.node_completed(False)
                 return
         adjustment = position_subtract2(head, obj.position)
-        max_step = max_speed * quantum
-        adjustment_distance = adjustment.origin.length()
-        if adjustment_distance <= DESIRED_DISTANCE:
+        max_step = f32(max_speed * quantum)
+        length = adjustment.origin.length()
+        if length <= DESIRED_DISTANCE:
             self.node_completed(True)
+        adjustment_distance = f32(length)
         if adjustment_distance > max_step:
-            adjustment.origin.set(adjustment.origin * (max_step / adjustment_distance))
+            adjustment.origin.set(adjustment.origin * f32(max_step / adjustment_distance))
         if self.keep_heading:
             adjustment.set_heading(0.0)
         offset.assign(adjustment)

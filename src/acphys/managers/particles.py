@@ -31,14 +31,21 @@ from __future__ import annotations
 import enum
 import math
 import random
+import struct
 from typing import TYPE_CHECKING
 
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, pack4, unpack3, unpack4
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
+
+_new = object.__new__
+#: Two values narrowed to float32 at once (a particle's scale and translucency).
+_F2 = struct.Struct("2f")
+_pack2, _unpack2 = _F2.pack, _F2.unpack
 
 #: ``CPhysicsPart::GetMaxDegradeDistance`` for a gfx object without degrade info (acclient.c:314377).
 DEFAULT_DEGRADE_DISTANCE = 100.0
@@ -48,6 +55,10 @@ FIRST_EMITTER_ID = 0xFFFF0000
 
 #: ``LongNIHash<ParticleEmitter>`` bucket count made by the ParticleManager constructor (acclient.c:329311).
 EMITTER_TABLE_SIZE = 2
+
+#: ``RollDice``'s bounds for the EXPLODE angles: the float32 π its ``float`` parameters hold
+#: (acclient.c:330779-330780).
+_PI32 = f32(3.1415927)
 
 
 class EmitterType(enum.IntEnum):
@@ -82,7 +93,10 @@ class ParticleType(enum.IntEnum):
 
 
 def _roll(dice: random.Random, lower: float, upper: float) -> float:
-    """``Random::RollDice(lower, upper)``: uniform in [lower, upper], from the world's ``dice``."""
+    """``Random::RollDice(lower, upper)``: uniform in [lower, upper], from the world's ``dice``.
+
+    The bounds are ``float`` parameters: callers pass float32 values. The draw is a double.
+    """
     return dice.uniform(lower, upper)
 
 
@@ -114,6 +128,11 @@ class ParticleEmitterInfo:
     ``degrade_distance`` has no field in retail's info: it is
     ``CPhysicsPart::GetMaxDegradeDistance`` of the particle gfx object (100 m
     without degrade info), which acphys, having no gfx objects, keeps here.
+
+    The ``float`` fields (the offsets, the magnitude bounds, the scale and
+    translucency values, the sorting sphere) are narrowed as the DAT holds them;
+    ``birthrate``, ``total_seconds``, ``lifespan`` and ``lifespan_rand`` are
+    doubles (acclient.h:52409-52441).
 
     Retail: ParticleEmitterInfo::ParticleEmitterInfo @ 0x00517250 (acclient.c:324406)
     """
@@ -208,38 +227,34 @@ class ParticleEmitterInfo:
         self.lifespan = float(lifespan)
         self.lifespan_rand = float(lifespan_rand)
         self.offset_dir = offset_dir.copy() if offset_dir is not None else Vector3()
-        self.min_offset = float(min_offset)
-        self.max_offset = float(max_offset)
+        self.min_offset, self.max_offset = f32(min_offset), f32(max_offset)
         self.a = a.copy() if a is not None else Vector3()
-        self.min_a, self.max_a = float(min_a), float(max_a)
         self.b = b.copy() if b is not None else Vector3()
-        self.min_b, self.max_b = float(min_b), float(max_b)
         self.c = c.copy() if c is not None else Vector3()
-        self.min_c, self.max_c = float(min_c), float(max_c)
-        self.start_scale, self.final_scale, self.scale_rand = (
-            float(start_scale),
-            float(final_scale),
-            float(scale_rand),
+        self.min_a, self.max_a, self.min_b, self.max_b = unpack4(pack4(min_a, max_a, min_b, max_b))
+        self.min_c, self.max_c = f32(min_c), f32(max_c)
+        self.start_scale, self.final_scale, self.start_trans, self.final_trans = unpack4(
+            pack4(start_scale, final_scale, start_trans, final_trans)
         )
-        self.start_trans, self.final_trans, self.trans_rand = (
-            float(start_trans),
-            float(final_trans),
-            float(trans_rand),
-        )
-        self.degrade_distance = float(degrade_distance)
+        self.scale_rand, self.trans_rand = f32(scale_rand), f32(trans_rand)
+        self.degrade_distance = f32(degrade_distance)
         self.sorting_sphere_radius = 0.0
         self.init_end()
 
     def init_end(self) -> None:
-        """The sorting sphere's radius: the larger of ``max_offset`` and ``max_a × lifespan``.
+        """The sorting sphere's radius: the larger of ``max_offset`` and ``max_a × lifespan``
+        (a ``float`` local, acclient.c:324489).
 
         Retail: ParticleEmitterInfo::InitEnd @ 0x005173B0 (acclient.c:324481)
         """
-        self.sorting_sphere_radius = max(self.max_offset, self.max_a * self.lifespan)
+        self.sorting_sphere_radius = max(self.max_offset, f32(self.max_a * self.lifespan))
 
     def is_persistent(self) -> bool:
         """Neither ``total_particles`` nor ``total_seconds`` limits the emitter (EmitParticle's flag)."""
         return not self.total_particles and self.total_seconds == 0.0
+
+    # The five GetRandom* scalars return doubles; EmitParticle narrows four of them into the
+    # ``float`` arguments of Particle::Init.
 
     def get_random_start_scale(self, dice: random.Random) -> float:
         """Retail: ParticleEmitterInfo::GetRandomStartScale @ 0x005170D0 (acclient.c:324323)"""
@@ -268,28 +283,42 @@ class ParticleEmitterInfo:
         ``offset_dir`` is removed; when the rest is shorter than EPSILON the
         offset is zero (and the distance is not rolled).
 
+        The rolls are ``float`` stores; the projection sums its y term first and stays
+        double, its y and z products are spilled to ``float`` (acclient.c:324551-324569).
+
         Retail: ParticleEmitterInfo::GetRandomOffset @ 0x005174A0 (acclient.c:324527)
         """
+        d = self.offset_dir
         rz = _roll(dice, -1.0, 1.0)
         ry = _roll(dice, -1.0, 1.0)
         rx = _roll(dice, -1.0, 1.0)
-        raw = Vector3(rx, ry, rz)
-        offset = raw - self.offset_dir * raw.dot(self.offset_dir)
+        rx, ry, rz = unpack3(pack3(rx, ry, rz))
+        along = ry * d.y + rz * d.z + rx * d.x
+        offset = Vector3(rx - along * d.x, ry - f32(along * d.y), rz - f32(along * d.z))
         if offset.normalize_check_small():
             return Vector3()
         return offset * (_roll(dice, 0.0, 1.0) * (self.max_offset - self.min_offset) + self.min_offset)
 
     def get_random_a(self, dice: random.Random) -> Vector3:
-        """Retail: ParticleEmitterInfo::GetRandomA @ 0x00517610 (acclient.c:324595)"""
-        return self.a * ((self.max_a - self.min_a) * _roll(dice, 0.0, 1.0) + self.min_a)
+        """``a`` times a magnitude in [min_a, max_a] (a ``float`` spill, acclient.c:324608).
+
+        Retail: ParticleEmitterInfo::GetRandomA @ 0x00517610 (acclient.c:324595)
+        """
+        return self.a * f32((self.max_a - self.min_a) * _roll(dice, 0.0, 1.0) + self.min_a)
 
     def get_random_b(self, dice: random.Random) -> Vector3:
-        """Retail: ParticleEmitterInfo::GetRandomB @ 0x00517670 (acclient.c:324617)"""
-        return self.b * ((self.max_b - self.min_b) * _roll(dice, 0.0, 1.0) + self.min_b)
+        """``b`` times a magnitude in [min_b, max_b] (a ``float`` spill, acclient.c:324630).
+
+        Retail: ParticleEmitterInfo::GetRandomB @ 0x00517670 (acclient.c:324617)
+        """
+        return self.b * f32((self.max_b - self.min_b) * _roll(dice, 0.0, 1.0) + self.min_b)
 
     def get_random_c(self, dice: random.Random) -> Vector3:
-        """Retail: ParticleEmitterInfo::GetRandomC @ 0x005176D0 (acclient.c:324639)"""
-        return self.c * ((self.max_c - self.min_c) * _roll(dice, 0.0, 1.0) + self.min_c)
+        """``c`` times a magnitude in [min_c, max_c] (a ``float`` spill, acclient.c:324652).
+
+        Retail: ParticleEmitterInfo::GetRandomC @ 0x005176D0 (acclient.c:324639)
+        """
+        return self.c * f32((self.max_c - self.min_c) * _roll(dice, 0.0, 1.0) + self.min_c)
 
     def should_emit_particle(
         self,
@@ -425,8 +454,17 @@ class Particle:
         [-π, π], axes weighted by ``c``; zero when too short). The part takes
         the start scale and translucency, then the first ``update`` places it.
 
+        The four scale and translucency values are ``float`` parameters (retail's
+        ``EmitParticle`` spills them, acclient.c:331053-331057), ``lifespan`` a double.
+        The offset sum stays double and is rotated summing the z term first, then the y
+        term (acclient.c:330699-330709); the first EXPLODE angle is a ``float`` local, the
+        second stays double (330779-330780).
+
         Retail: Particle::Init @ 0x0051C930 (acclient.c:330648)
         """
+        start_scale, final_scale, start_trans, final_trans = unpack4(
+            pack4(start_scale, final_scale, start_trans, final_trans)
+        )
         now = parent.world.physics_time
         self.lifetime = 0.0
         self.birthtime = now
@@ -437,7 +475,14 @@ class Particle:
             assert parent.part_array is not None
             self.start_frame = parent.part_array.parts[part_index].pos.frame.copy()
         frame = self.start_frame
-        self.offset = frame.localtoglobalvec(parent_offset.origin + offset)
+        m = frame.m
+        po = parent_offset.origin
+        ox, oy, oz = offset.x + po.x, po.y + offset.y, po.z + offset.z
+        self.offset = Vector3(
+            oz * m[6] + oy * m[3] + ox * m[0],
+            oz * m[7] + oy * m[4] + ox * m[1],
+            oz * m[8] + oy * m[5] + ox * m[2],
+        )
         pt = particle_type
         if pt in (ParticleType.LOCAL_VELOCITY, ParticleType.PARABOLIC_LVGA, ParticleType.PARABOLIC_LVGAGR):
             self.a = frame.localtoglobalvec(a)
@@ -468,8 +513,8 @@ class Particle:
         elif pt == ParticleType.EXPLODE:
             self.a = a.copy()
             self.b = b.copy()
-            yaw = _roll(parent.world.dice, -math.pi, math.pi)
-            pitch = _roll(parent.world.dice, -math.pi, math.pi)
+            yaw = f32(_roll(parent.world.dice, -_PI32, _PI32))
+            pitch = _roll(parent.world.dice, -_PI32, _PI32)
             direction = Vector3(
                 math.cos(yaw) * c.x * math.cos(pitch),
                 math.sin(yaw) * c.y * math.cos(pitch),
@@ -508,47 +553,91 @@ class Particle:
         is. Scale and translucency ramp linearly from start to final over the
         lifespan and hold at final after it.
 
+        Each closed form is summed in retail's order, with the ``float`` spills the
+        decompilation shows (acclient.c:330409-330532): the velocity and parabolic forms
+        spill most of their terms (and the parabolic ones a float32 copy of ``t``), the
+        SWARM, IMPLODE and EXPLODE forms sum in registers and store once. The scale and
+        the translucency are ``float`` stores; the lifetime and ``t / lifespan`` stay double.
+
         Retail: Particle::Update @ 0x0051C290 (acclient.c:330312)
         """
         elapsed = now - self.birthtime
         if is_persistent:
-            self.lifetime += elapsed
+            self.lifetime = elapsed + self.lifetime
             self.birthtime = now
         else:
             self.lifetime = elapsed
         t = self.lifetime
-        base = parent_frame.origin + self.offset
-        a, b, c = self.a, self.b, self.c
+        p = parent_frame.origin
+        o, a, b, c = self.offset, self.a, self.b, self.c
         pt = particle_type
         if pt == ParticleType.STILL:
-            part.frame.origin = base
+            part.frame.origin = p + o
         elif pt in (ParticleType.LOCAL_VELOCITY, ParticleType.GLOBAL_VELOCITY):
-            part.frame.origin = base + a * t
+            tax, tay, bay, baz = unpack4(pack4(t * a.x, t * a.y, o.y + p.y, o.z + p.z))
+            origin = part.frame.origin = _new(Vector3)
+            origin.x, origin.y, origin.z = unpack3(pack3(p.x + o.x + tax, bay + tay, baz + t * a.z))
         elif pt in (ParticleType.PARABOLIC_LVGA, ParticleType.PARABOLIC_LVLA, ParticleType.PARABOLIC_GVGA):
-            part.frame.origin = base + a * t + b * (0.5 * t * t)
+            # b·0.5 of a float32 is a float32: its spills change nothing.
+            hbx, hby, hbz = b.x * 0.5, b.y * 0.5, b.z * 0.5
+            t32, qy, qz, tay = unpack4(pack4(t, hby * t, hbz * t, t * a.y))
+            taz, bay, baz = unpack3(pack3(t * a.z, o.y + p.y, o.z + p.z))
+            sx, sy, sz, wy = unpack4(pack4(hbx * t * t32, qy * t32, qz * t32, bay + tay))
+            wz = f32(f32(baz + taz) + sz)
+            origin = part.frame.origin = _new(Vector3)
+            origin.x, origin.y, origin.z = unpack3(pack3(t * a.x + (o.x + p.x) + sx, wy + sy, wz))
         elif pt in (
             ParticleType.PARABOLIC_LVGAGR,
             ParticleType.PARABOLIC_LVLALR,
             ParticleType.PARABOLIC_GVGAGR,
         ):
             frame = parent_frame.copy()
-            frame.origin = base + a * t + b * (0.5 * t * t)
+            hbx, hby, hbz = b.x * 0.5, b.y * 0.5, b.z * 0.5
+            t32, qy, qz, tay = unpack4(pack4(t, hby * t, hbz * t, t * a.y))
+            taz = f32(t * a.z)
+            sz, ry, rz, wx = unpack4(pack4(qz * t32, tay + o.y, taz + o.z, t * a.x + o.x + hbx * t * t32))
+            fo = frame.origin
+            fo.x, fo.y, fo.z = unpack3(pack3(fo.x + wx, fo.y + ry + qy * t32, fo.z + rz + sz))
             frame.rotate(c * t)
             part.frame = frame
         elif pt == ParticleType.SWARM:
-            part.frame.origin = (
-                base
-                + a * t
-                + Vector3(math.cos(b.x * t) * c.x, math.sin(b.y * t) * c.y, math.cos(b.z * t) * c.z)
+            origin = part.frame.origin = _new(Vector3)
+            origin.x, origin.y, origin.z = unpack3(
+                pack3(
+                    math.cos(b.x * t) * c.x + t * a.x + o.x + p.x,
+                    math.sin(b.y * t) * c.y + t * a.y + o.y + p.y,
+                    math.cos(b.z * t) * c.z + t * a.z + o.z + p.z,
+                )
             )
         elif pt == ParticleType.IMPLODE:
-            part.frame.origin = base + c * math.cos(a.x * t) + b * (t * t)
+            k = math.cos(a.x * t)
+            tt = t * t
+            origin = part.frame.origin = _new(Vector3)
+            origin.x, origin.y, origin.z = unpack3(
+                pack3(
+                    k * c.x + tt * b.x + o.x + p.x,
+                    k * c.y + tt * b.y + o.y + p.y,
+                    k * c.z + tt * b.z + o.z + p.z,
+                )
+            )
         elif pt == ParticleType.EXPLODE:
-            part.frame.origin = base + (b * t + c * a.x) * t + Vector3(0.0, 0.0, a.z * t)
+            origin = part.frame.origin = _new(Vector3)
+            origin.x, origin.y, origin.z = unpack3(
+                pack3(
+                    (t * b.x + c.x * a.x) * t + o.x + p.x,
+                    (t * b.y + c.y * a.x) * t + o.y + p.y,
+                    (t * b.z + c.z * a.x + a.z) * t + o.z + p.z,
+                )
+            )
         fraction = t / self.lifespan if t < self.lifespan else 1.0
-        scale = (self.final_scale - self.start_scale) * fraction + self.start_scale
-        part.gfxobj_scale = Vector3(scale, scale, scale)
-        part.translucency = (self.final_trans - self.start_trans) * fraction + self.start_trans
+        scale, part.translucency = _unpack2(
+            _pack2(
+                (self.final_scale - self.start_scale) * fraction + self.start_scale,
+                (self.final_trans - self.start_trans) * fraction + self.start_trans,
+            )
+        )
+        gfxobj_scale = part.gfxobj_scale = _new(Vector3)
+        gfxobj_scale.x = gfxobj_scale.y = gfxobj_scale.z = scale
 
 
 class ParticleEmitter:
@@ -627,13 +716,16 @@ class ParticleEmitter:
     def viewer_distance(self) -> float:
         """``CYpt`` of the particle object: its distance from the viewer (``world.player``; 0 without one).
 
+        A ``float`` field, the squares summed z first (acclient.c:317936-317939).
+
         Retail: CPhysicsObj::UpdateViewerDistance @ 0x00510B30 (acclient.c:317912)
         """
         viewer = self.parent.world.player
         if viewer is None:
             return 0.0
         here = Position(self.parent.position.objcell_id, self.get_frame())
-        return viewer.position.get_offset(here).length()
+        v = viewer.position.get_offset(here)
+        return f32(math.sqrt(v.z * v.z + v.x * v.x + v.y * v.y))
 
     def should_draw_particles(self) -> bool:
         """The particle object is within ``degrade_distance`` of the viewer and in a cell.

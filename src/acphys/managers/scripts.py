@@ -16,6 +16,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.precision import f32
+
 if TYPE_CHECKING:
     from acphys.motion.anim_hooks import AnimHook
     from acphys.physics_obj import PhysicsObj
@@ -66,12 +68,13 @@ class PhysicsScript:
 
 
 class ScriptAndModData:
-    """Retail ``ScriptAndModData``: ``script_id`` is played for intensities up to ``mod``."""
+    """Retail ``ScriptAndModData`` (acclient.h:31999): ``script_id`` is played for intensities up to
+    ``mod`` (a ``float`` field)."""
 
     __slots__ = ("mod", "script_id")
 
     def __init__(self, mod: float, script_id: int) -> None:
-        self.mod = float(mod)
+        self.mod = f32(mod)
         self.script_id = script_id
 
 
@@ -86,8 +89,11 @@ class PhysicsScriptTableData:
     def get_script(self, mod: float) -> int:
         """The first variant whose ``mod`` is at least ``mod`` (0 when every one is below it).
 
+        ``mod`` is a ``float`` parameter.
+
         Retail: PhysicsScriptTableData::GetScript @ 0x00521A20 (acclient.c:336551)
         """
+        mod = f32(mod)
         for entry in self.script_array:
             if not mod > entry.mod:
                 return entry.script_id
@@ -103,7 +109,8 @@ class PhysicsScriptTable:
         self.script_table = dict(script_table)
 
     def get_script(self, script_type: int, mod: float) -> int:
-        """The script id for ``script_type`` at intensity ``mod``; 0 for a type the table lacks.
+        """The script id for ``script_type`` at intensity ``mod`` (a ``float`` parameter); 0 for a
+        type the table lacks.
 
         Retail: PhysicsScriptTable::GetScript @ 0x00521E40 (acclient.c:336930)
         """

@@ -15,15 +15,17 @@ from typing import TYPE_CHECKING
 from acphys.constants import EPSILON
 from acphys.managers.target import TargetStatus
 from acphys.math.position import Position
+from acphys.math.vector import Vector3
 from acphys.motion.move_to import position_heading
+from acphys.precision import f32, pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.managers.target import TargetInfo
     from acphys.math.frame import Frame
     from acphys.physics_obj import PhysicsObj
 
-#: The gap kept between the two cylinders (acclient.c:388559).
-STICKY_RADIUS: float = 0.30000001
+#: The gap kept between the two cylinders, the float32 0.3 (acclient.c:388559).
+STICKY_RADIUS: float = f32(0.30000001)
 #: The stick lasts this long after ``StickTo`` (acclient.c:388684).
 STICKY_TIME: float = 1.0
 #: Closing speed as a multiple of the body's max speed (acclient.c:388572) ...
@@ -38,9 +40,27 @@ STICKY_TARGET_QUANTUM: float = 0.5
 def cylinder_distance_no_z(r1: float, p1: Position, r2: float, p2: Position) -> float:
     """The full 3-D centre distance less both radii (despite its name, z is included).
 
+    The radii are ``float`` parameters.
+
     Retail: Position::cylinder_distance_no_z @ 0x005A98B0 (acclient.c:467268)
     """
-    return p1.get_offset(p2).length() - (r1 + r2)
+    return p1.get_offset(p2).length() - (f32(r1) + f32(r2))
+
+
+def position_globaltolocalvec(p: Position, v: Vector3) -> Vector3:
+    """Rotate a global vector into ``p``'s frame, each row summed from its y term.
+
+    ``Position``'s own copy of ``Frame::globaltolocalvec``, which sums the z term first: the
+    two round differently.
+
+    Retail: Position::globaltolocalvec @ 0x0050C420 (acclient.c:313494)
+    """
+    m = p.frame.m
+    return Vector3(
+        m[1] * v.y + m[0] * v.x + m[2] * v.z,
+        m[4] * v.y + m[3] * v.x + m[5] * v.z,
+        m[7] * v.y + m[6] * v.x + m[8] * v.z,
+    )
 
 
 class StickyManager:
@@ -72,12 +92,13 @@ class StickyManager:
 
         The body asks its target manager to track the target (radius 0.5,
         quantum 0.5); the pull starts with the manager's first OK report.
-        ``target_height`` is accepted and unused, as in retail.
+        ``target_height`` is accepted and unused, as in retail; ``target_radius``
+        is a ``float`` parameter and field.
 
         Retail: StickyManager::StickTo @ 0x00555710 (acclient.c:388664)
         """
         self.handle_exit_world()
-        self.target_radius = target_radius
+        self.target_radius = f32(target_radius)
         self.target_id = target_id
         self.initialized = False
         self.sticky_timeout_time = self.physics_obj.world.cur_time + STICKY_TIME
@@ -129,6 +150,11 @@ class StickyManager:
         standoff (negative: backing off) when that is within reach. The
         rotation becomes the heading still to turn, in [0, 360).
 
+        The direction is rotated into the body's frame by ``Position::globaltolocalvec``;
+        the body's radius (a ``float`` argument), the gap ``mag``, the sought heading and
+        the turn are ``float`` stores; the step length stays double, and the "no turn"
+        test reads the turn before it is narrowed (acclient.c:388548-388600).
+
         Retail: StickyManager::adjust_offset @ 0x00555430 (acclient.c:388518)
         """
         if not self.target_id or not self.initialized:
@@ -137,9 +163,9 @@ class StickyManager:
         here = obj.position
         target = obj.world.get_object(self.target_id)
         there = target.position if target is not None else self.target_position
-        direction = here.frame.globaltolocalvec(here.get_offset(there))
+        direction = position_globaltolocalvec(here, here.get_offset(there))
         direction.z = 0.0
-        gap = cylinder_distance_no_z(obj.get_radius(), here, self.target_radius, there) - STICKY_RADIUS
+        gap = f32(cylinder_distance_no_z(obj.get_radius(), here, self.target_radius, there) - STICKY_RADIUS)
         if direction.normalize_check_small():
             direction.x = direction.y = direction.z = 0.0
         speed = obj.get_minterp().get_max_speed() * STICKY_SPEED_FACTOR
@@ -148,10 +174,11 @@ class StickyManager:
         step = speed * quantum
         if step >= abs(gap):
             step = gap
-        offset.origin.set(direction * step)
-        turn = position_heading(here, there) - here.frame.get_heading()
-        if abs(turn) < EPSILON:
-            turn = 0.0
-        if turn < -EPSILON:
-            turn += 360.0
-        offset.set_heading(turn)
+        o = offset.origin
+        o.x, o.y, o.z = unpack3(pack3(step * direction.x, step * direction.y, step * direction.z))
+        sought = f32(position_heading(here, there))
+        turn = sought - here.frame.get_heading()
+        heading = 0.0 if abs(turn) < EPSILON else f32(turn)
+        if heading < -EPSILON:
+            heading += 360.0
+        offset.set_heading(heading)

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Generic, TypeVar
 
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
-from acphys.precision import f32
+from acphys.precision import f32, pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -219,11 +219,13 @@ class TargetManager:
         """Drop the current target (leaving its voyeur table), then track ``object_id``: record it as
         not yet answered (``Undef``, stamped with ``Timer::cur_time``) and, when the object exists,
         become its voyeur, which answers at once. Object id 0 instead reports a ``TimedOut`` target
-        with ``context_id`` straight to ``HandleUpdateTarget``.
+        with ``context_id`` straight to ``HandleUpdateTarget``. ``radius`` is a ``float``
+        parameter and field; ``quantum`` is a double.
 
         Retail: TargetManager::SetTarget @ 0x0051AC30 (acclient.c:328573)
         """
         obj = self.physobj
+        radius = f32(radius)
         self._drop_target()
         if not object_id:
             obj.handle_update_target(TargetInfo(0, TargetStatus.TIMED_OUT, context_id=context_id))
@@ -302,10 +304,12 @@ class TargetManager:
 
     def add_voyeur(self, object_id: int, radius: float, quantum: float) -> None:
         """Register a tracker. A known one only gets its radius and quantum updated; a new one is
-        entered into the table and sent this body's position at once.
+        entered into the table and sent this body's position at once. ``radius`` is a
+        ``float`` parameter, ``quantum`` a double (``CPhysicsObj::add_voyeur`` narrows it).
 
         Retail: TargetManager::AddVoyeur @ 0x0051A830 (acclient.c:328299)
         """
+        radius = f32(radius)
         if self.voyeur_table is None:
             self.voyeur_table = LongNIHash(VOYEUR_TABLE_SIZE)
         else:
@@ -347,13 +351,19 @@ class TargetManager:
         self.last_update_time = now
 
     def get_interpolated_position(self, quantum: float) -> Position:
-        """This body's position ``quantum`` seconds ahead at ``get_velocity`` (its ``cached_velocity``);
-        retail narrows ``quantum`` to a float first.
+        """This body's position ``quantum`` seconds ahead at ``get_velocity`` (its ``cached_velocity``).
+
+        ``quantum`` is narrowed to a ``float`` local; of the step ``quantum × velocity`` only the
+        z term is stored (in a ``Vector3``) before it is added to the origin
+        (acclient.c:328147-328154).
 
         Retail: TargetManager::GetInterpolatedPosition @ 0x0051A5E0 (acclient.c:328130)
         """
         p = self.physobj.position.copy()
-        p.frame.origin = p.frame.origin + self.physobj.get_velocity() * f32(quantum)
+        q = f32(quantum)
+        v = self.physobj.get_velocity()
+        o = p.frame.origin
+        o.x, o.y, o.z = unpack3(pack3(q * v.x + o.x, q * v.y + o.y, f32(q * v.z) + o.z))
         return p
 
     def check_and_update_voyeur(self, voyeur: TargettedVoyeurInfo) -> None:

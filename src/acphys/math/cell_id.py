@@ -13,6 +13,7 @@ import math
 
 from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, CELLS_PER_BLOCK, EPSILON, MAX_LCOORD
 from acphys.math.vector import Vector3, zero_vector
+from acphys.precision import pack3, unpack3
 
 FIRST_ENV_CELL = 0x100
 LAST_LAND_CELL = 0x40
@@ -135,7 +136,9 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
     rewrites ``loc`` in place to be local to that cell's landblock (retail
     subtracts multiples of ``flt_8EDE44 = 24.0 * 8.0``, acclient.c:800515). Returns
     the new cell id, or 0 when the point is off the world (``loc`` is then
-    left with the snapping only).
+    left with the snapping only). The moved x and y are stores into ``loc``'s
+    ``float`` fields (acclient.c:467457-467460): a point just west of a block,
+    moved 192 m east, rounds to float32.
 
     Retail: LandDefs::adjust_to_outside @ 0x005A9BC0 (acclient.c:467433)
     """
@@ -148,8 +151,14 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
     lcoord = get_outside_lcoord(cell_id, loc)
     if lcoord is None:
         return 0
-    loc.x -= math.floor(loc.x / BLOCK_LENGTH) * BLOCK_LENGTH
-    loc.y -= math.floor(loc.y / BLOCK_LENGTH) * BLOCK_LENGTH
+    x, y = loc.x, loc.y
+    loc.x, loc.y, _ = unpack3(
+        pack3(
+            x - math.floor(x / BLOCK_LENGTH) * BLOCK_LENGTH,
+            y - math.floor(y / BLOCK_LENGTH) * BLOCK_LENGTH,
+            0.0,
+        )
+    )
     return lcoord_to_gid(*lcoord)
 
 

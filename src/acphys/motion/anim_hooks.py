@@ -11,7 +11,9 @@ script only record an event (``hook:<Kind>``) on the body, since acphys has
 no renderer, sound, weenie or child objects.
 
 Data and ``Execute`` are ported here; reading hooks from a retail DAT is
-:func:`acphys.dat.motion.unpack_hook` (``CAnimHook::UnPackHook``).
+:func:`acphys.dat.motion.unpack_hook` (``CAnimHook::UnPackHook``). The hooks'
+scalar data (scales, times, tween ends, pauses, sound and texture rates, attack
+cone sizes) are ``float`` fields in retail (acclient.h) and are kept as float32.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, pack4, unpack3, unpack4
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -176,8 +179,7 @@ class ScaleHook(AnimHook):
 
     def __init__(self, end: float, time: float, *, direction: int = AnimHookDir.BOTH) -> None:
         super().__init__(direction=direction)
-        self.end = float(end)
-        self.time = float(time)
+        self.end, self.time, _ = unpack3(pack3(end, time, 0.0))
 
     def execute(self, obj: PhysicsObj) -> None:
         """Retail: ScaleHook::Execute @ 0x00526E40 (acclient.c:342473)"""
@@ -249,7 +251,8 @@ class SoundTweakedHook(AnimHook):
         direction: int = AnimHookDir.BOTH,
     ) -> None:
         super().__init__(direction=direction)
-        self.gid, self.prio, self.prob, self.vol = gid, prio, prob, vol
+        self.gid = gid
+        self.prio, self.prob, self.vol = unpack3(pack3(prio, prob, vol))
 
 
 class AttackHook(AnimHook):
@@ -272,8 +275,10 @@ class AttackHook(AnimHook):
         direction: int = AnimHookDir.BOTH,
     ) -> None:
         super().__init__(direction=direction)
-        self.part_index, self.left, self.right = part_index, left, right
-        self.radius, self.height = radius, height
+        self.part_index = part_index
+        lx, ly, rx, ry = unpack4(pack4(left[0], left[1], right[0], right[1]))
+        self.left, self.right = (lx, ly), (rx, ry)
+        self.radius, self.height, _ = unpack3(pack3(radius, height, 0.0))
 
 
 class ReplaceObjectHook(AnimHook):
@@ -299,7 +304,7 @@ class _Tween(AnimHook):
         self, start: float = 0.0, end: float = 0.0, time: float = 0.0, *, direction: int = AnimHookDir.BOTH
     ) -> None:
         super().__init__(direction=direction)
-        self.start, self.end, self.time = start, end, time
+        self.start, self.end, self.time = unpack3(pack3(start, end, time))
 
 
 class _PartTween(_Tween):
@@ -483,7 +488,7 @@ class CallPESHook(AnimHook):
 
     def __init__(self, pes: int = 0, pause: float = 0.0, *, direction: int = AnimHookDir.BOTH) -> None:
         super().__init__(direction=direction)
-        self.pes, self.pause = pes, pause
+        self.pes, self.pause = pes, f32(pause)
 
     def execute(self, obj: PhysicsObj) -> None:
         """Retail: CallPESHook::Execute @ 0x00526E20 (acclient.c:342467)"""
@@ -500,7 +505,7 @@ class TextureVelocityHook(AnimHook):
         self, u_speed: float = 0.0, v_speed: float = 0.0, *, direction: int = AnimHookDir.BOTH
     ) -> None:
         super().__init__(direction=direction)
-        self.u_speed, self.v_speed = u_speed, v_speed
+        self.u_speed, self.v_speed, _ = unpack3(pack3(u_speed, v_speed, 0.0))
 
 
 class TextureVelocityPartHook(TextureVelocityHook):

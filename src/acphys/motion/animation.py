@@ -105,7 +105,8 @@ class AnimData:
     """Retail ``AnimData`` (acclient.h:52536): an animation reference, its frame range and its rate.
 
     ``high_frame = -1`` means "to the last frame"; the range is resolved
-    when a :class:`AnimSequenceNode` is made from it.
+    when a :class:`AnimSequenceNode` is made from it. ``framerate`` is a
+    ``float`` field: it is stored as a float32.
     """
 
     __slots__ = ("animation", "framerate", "high_frame", "low_frame")
@@ -128,7 +129,7 @@ class AnimData:
         self.animation = animation
         self.low_frame = low_frame
         self.high_frame = high_frame
-        self.framerate = float(framerate)
+        self.framerate = f32(framerate)
 
     def copy(self) -> AnimData:
         return AnimData(self.animation, self.low_frame, self.high_frame, self.framerate)
@@ -136,9 +137,13 @@ class AnimData:
     def __rmul__(self, speed: float) -> AnimData:
         """``speed * anim_data``: the same animation and range at ``speed`` times the framerate.
 
+        ``speed`` is a ``float`` parameter; the product (exact in double) is stored into the
+        result's ``float`` framerate (acclient.c:341061-341064), so a speed of 0.64 gives
+        ``f32(30 * f32(0.64))`` = 19.19999886, not 19.2.
+
         Retail: operator* @ 0x00525D00 (acclient.c:341050)
         """
-        return AnimData(self.animation, self.low_frame, self.high_frame, speed * self.framerate)
+        return AnimData(self.animation, self.low_frame, self.high_frame, self.framerate * f32(speed))
 
     def __repr__(self) -> str:
         return f"AnimData({self.animation!r}, {self.low_frame}, {self.high_frame}, {self.framerate})"
@@ -198,11 +203,14 @@ class AnimSequenceNode:
     def multiply_framerate(self, multiplier: float) -> None:
         """Scale the framerate; a negative multiplier also swaps the low and high frames.
 
+        ``multiplier`` is a ``float`` parameter and ``framerate`` a ``float`` field.
+
         Retail: AnimSequenceNode::multiply_framerate @ 0x00525BE0 (acclient.c:340967)
         """
+        multiplier = f32(multiplier)
         if multiplier < 0.0:
             self.low_frame, self.high_frame = self.high_frame, self.low_frame
-        self.framerate = multiplier * self.framerate
+        self.framerate = f32(multiplier * self.framerate)
 
     def get_starting_frame(self) -> float:
         """``low_frame`` forwards; ``high_frame + 1 - F_EPSILON`` backwards (just inside the last frame).

@@ -11,8 +11,10 @@ array (style, forward, sidestep, turn), ``get_state_velocity`` is the planar
 speed those motions stand for, and the jump and ground handlers launch and
 land the body.
 
-Speeds the interpreter writes into its own (float) fields are rounded to
-float32 there, as the retail stores do; everything else is float64.
+Speeds the interpreter writes into its own (float) fields, the jump extent
+and the velocities it builds are rounded to float32 where retail stores them
+(see :mod:`acphys.precision`); the rates and lengths between those stores
+are float64.
 """
 
 from __future__ import annotations
@@ -49,7 +51,7 @@ from acphys.motion.movement import (
     MovementStruct,
     MovementType,
 )
-from acphys.precision import f32
+from acphys.precision import f32, pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.motion.weenie import Weenie
@@ -249,6 +251,10 @@ class MotionInterp:
         x = 1.25 x sidestep speed (SideStepRight), y = 3.12 x forward speed
         (WalkForward) or 4.0 x forward speed (RunForward), z = 0.
 
+        Each component is stored into the ``float`` result before its length is taken; a
+        capped component is ``1 / length · x · max_speed`` evaluated in double and stored once
+        (acclient.c:343590-343592).
+
         Retail: CMotionInterp::get_state_velocity @ 0x00527D50 (acclient.c:343538)
         """
         state = self.interpreted_state
@@ -263,7 +269,12 @@ class MotionInterp:
         max_speed = self._run_rate() * RUN_ANIM_SPEED
         length = velocity.length()
         if length > max_speed:
-            velocity = velocity * (1.0 / length) * max_speed
+            inv = 1.0 / length
+            velocity.x, velocity.y, velocity.z = unpack3(
+                pack3(
+                    inv * velocity.x * max_speed, inv * velocity.y * max_speed, inv * velocity.z * max_speed
+                )
+            )
         return velocity
 
     def get_max_speed(self) -> float:
@@ -354,13 +365,15 @@ class MotionInterp:
         """Jump with charge ``extent``: on success leave walkable ground (LeaveGround launches the body).
 
         Returns ``(error, stamina_cost)``; a refused jump also cancels a
-        standing long jump. Any move-to is cancelled first.
+        standing long jump. Any move-to is cancelled first. ``extent`` is a
+        ``float`` parameter, stored in the ``float`` field ``jump_extent``.
 
         Retail: CMotionInterp::jump @ 0x00528780 (acclient.c:344223)
         """
         obj = self.physics_obj
         if obj is None:
             return MovementError.NO_PHYSICS_OBJECT, 0
+        extent = f32(extent)
         obj.cancel_moveto()
         error, cost = self.jump_is_allowed(extent)
         if error:
@@ -373,6 +386,8 @@ class MotionInterp:
     def get_jump_v_z(self) -> float:
         """Upward launch speed: 0 uncharged, 10 without a weenie, else the weenie's (0 if it cannot say).
 
+        The weenie writes its answer into the ``float`` local ``extent``, which is returned.
+
         Retail: CMotionInterp::get_jump_v_z @ 0x00527AA0 (acclient.c:343342)
         """
         extent = self.jump_extent
@@ -382,21 +397,31 @@ class MotionInterp:
         if self.weenie_obj is None:
             return DEFAULT_JUMP_V_Z
         v_z = self.weenie_obj.inq_jump_velocity(extent)
-        return 0.0 if v_z is None else v_z
+        return 0.0 if v_z is None else f32(v_z)
 
     def get_leave_ground_velocity(self) -> Vector3:
         """Body-local launch velocity: the state velocity with z = jump speed.
 
         When all three are (within EPSILON) zero, the body's current global
-        velocity rotated into its local frame is used instead.
+        velocity rotated into its local frame is used instead. The jump speed is a
+        ``float`` local; the rotated velocity is summed in retail's own order (rows of the
+        transposed matrix taken y, x, z) and stored once per component (acclient.c:343822-343840).
 
         Retail: CMotionInterp::get_leave_ground_velocity @ 0x005280C0 (acclient.c:343805)
         """
         velocity = self.get_state_velocity()
-        velocity.z = self.get_jump_v_z()
+        velocity.z = self.get_jump_v_z()  # a float32 already: the float local va
         if abs(velocity.x) < EPSILON and abs(velocity.y) < EPSILON and abs(velocity.z) < EPSILON:
             obj = self.physics_obj
-            velocity = obj.position.frame.globaltolocalvec(obj.velocity)
+            m = obj.position.frame.m
+            g = obj.velocity
+            velocity.x, velocity.y, velocity.z = unpack3(
+                pack3(
+                    m[1] * g.y + m[0] * g.x + m[2] * g.z,
+                    m[4] * g.y + m[3] * g.x + m[5] * g.z,
+                    m[7] * g.y + m[6] * g.x + m[8] * g.z,
+                )
+            )
         return velocity
 
     def leave_ground(self) -> None:

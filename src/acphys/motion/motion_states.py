@@ -20,12 +20,13 @@ from acphys.motion.commands import (
     TURN_RIGHT,
 )
 from acphys.motion.movement import HoldKey, MovementFlags, MovementParameters
+from acphys.precision import f32
 
 MF = MovementFlags
 
 
 class ActionNode:
-    """One queued action (a one-shot animation) of a motion state.
+    """One queued action (a one-shot animation) of a motion state; ``speed`` is a ``float`` field.
 
     Retail: ActionNode (acclient.h:46465)
     """
@@ -34,7 +35,7 @@ class ActionNode:
 
     def __init__(self, action: int, speed: float, stamp: int, autonomous: bool) -> None:
         self.action = action
-        self.speed = speed
+        self.speed = f32(speed)
         self.stamp = stamp
         self.autonomous = autonomous
 

@@ -34,6 +34,7 @@ from acphys.constants import EPSILON
 from acphys.math.vector import Vector3
 from acphys.motion.animation import AnimData
 from acphys.motion.commands import ACTION_MASK, MODIFIER_MASK, STYLE_MASK, SUBSTATE_MASK
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.motion.sequence import Sequence
@@ -103,13 +104,13 @@ class MotionData:
 
 
 class MotionList:
-    """Retail ``MotionList`` (acclient.h:31664): one modifier or action with its speed."""
+    """Retail ``MotionList`` (acclient.h:31664): one modifier or action with its (float) speed."""
 
     __slots__ = ("motion", "speed_mod")
 
     def __init__(self, motion: int, speed_mod: float = 1.0) -> None:
         self.motion = motion
-        self.speed_mod = speed_mod
+        self.speed_mod = f32(speed_mod)
 
     def __repr__(self) -> str:
         return f"MotionList(0x{self.motion:08X}, {self.speed_mod!r})"
@@ -121,6 +122,8 @@ class MotionState:
     Retail keeps two singly linked lists; here ``modifiers`` is a list whose
     first element is the retail ``modifier_head`` (new modifiers go in front)
     and ``actions`` is a FIFO whose first element is ``action_head``.
+    ``substate_mod`` is a ``float`` field: the motion table stores its float32
+    ``speed_mod`` parameter there.
     """
 
     __slots__ = ("actions", "modifiers", "style", "substate", "substate_mod")
@@ -268,13 +271,15 @@ def change_cycle_speed(
     a cycle slowed to 0 stays frozen when sped up again. ``data`` is unused,
     as in retail.
 
+    The ratio is spilled to a ``float`` (``multiplier``, acclient.c:337280).
+
     Retail: change_cycle_speed @ 0x00522290 (acclient.c:337268)
     """
     if math.fabs(old_speed) <= EPSILON:
         if math.fabs(new_speed) < EPSILON:
             sequence.multiply_cyclic_animation_framerate(0.0)
     else:
-        sequence.multiply_cyclic_animation_framerate(new_speed / old_speed)
+        sequence.multiply_cyclic_animation_framerate(f32(new_speed / old_speed))
 
 
 def _count(*parts: MotionData | None) -> int:
@@ -410,8 +415,12 @@ class MotionTable:
           sequence (a modifier already present is stopped and re-added).
         Every branch that rebuilds the sequence ends with ``re_modify``.
 
+        ``speed_mod`` is a ``float`` parameter, narrowed here: it becomes the state's
+        ``substate_mod`` and every framerate ``add_motion`` multiplies.
+
         Retail: CMotionTable::GetObjectSequence @ 0x00522860 (acclient.c:337640)
         """
+        speed_mod = f32(speed_mod)
         style = curr_state.style
         if not style:
             return False, 0

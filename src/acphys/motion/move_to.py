@@ -40,6 +40,7 @@ from acphys.motion.movement import (
     MovementStruct,
     MovementType,
 )
+from acphys.precision import f32, pack3, pack4, unpack3, unpack4
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
@@ -68,8 +69,11 @@ def heading_greater(x: float, y: float, motion: int) -> bool:
     ``TurnRight`` the answer is that strict comparison; for any other motion
     it is its negation, so equal headings count as passed when turning left.
 
+    ``x`` and ``y`` are ``float`` parameters.
+
     Retail: heading_greater @ 0x00528F60 (acclient.c:344714)
     """
+    x, y, _ = unpack3(pack3(x, y, 0.0))
     not_greater = x <= y if abs(x - y) <= 180.0 else y <= x
     if motion != TURN_RIGHT:
         return not_greater
@@ -82,8 +86,11 @@ def heading_diff(x: float, y: float, motion: int) -> float:
     ``x - y`` with a EPSILON dead zone, wrapped into [0, 360); for any motion
     other than ``TurnRight`` a non-zero result is mirrored to ``360 - d``.
 
+    ``x`` and ``y`` are ``float`` parameters; the difference and the result stay double.
+
     Retail: heading_diff @ 0x00528FB0 (acclient.c:344737)
     """
+    x, y, _ = unpack3(pack3(x, y, 0.0))
     diff = x - y
     if abs(diff) < EPSILON:
         diff = 0.0
@@ -141,9 +148,13 @@ def cylinder_distance(r1: float, h1: float, p1: Position, r2: float, h2: float, 
     test of 0x41 on ``gap``); it is read as ``gap <= 0``, the only reading under
     which a vertically separated pair measures its separation.
 
+    The radii and heights are ``float`` parameters and ``reach`` is stored into one
+    (``p2a``, acclient.c:467238); the rest stays double.
+
     Retail: Position::cylinder_distance @ 0x005A97F0 (acclient.c:467220)
     """
-    reach = p1.get_offset(p2).length() - (r1 + r2)
+    r1, h1, r2, h2 = unpack4(pack4(r1, h1, r2, h2))
+    reach = f32(p1.get_offset(p2).length() - (r1 + r2))
     z1 = p1.frame.origin.z
     z2 = p2.frame.origin.z
     gap = z2 - (z1 + h1) if z1 <= z2 else z1 - (z2 + h2)
@@ -179,8 +190,11 @@ def get_command(params: MovementParameters, curr_distance: float) -> tuple[int, 
     where retail leaves it unwritten (only with command 0). Retail also takes
     the heading to the target, and ignores it.
 
+    ``curr_distance`` is a ``float`` parameter.
+
     Retail: MovementParameters::get_command @ 0x0052AA00 (acclient.c:346174)
     """
+    curr_distance = f32(curr_distance)
     flags = params.flags
     moving_away: bool | None = None
     if flags & MovementFlags.MOVE_TOWARDS and flags & MovementFlags.MOVE_AWAY:
@@ -236,14 +250,14 @@ def _copy_params(dst: MovementParameters, src: MovementParameters) -> None:
 class MovementNode:
     """One pending action: move to the target position, or turn to ``heading``.
 
-    Retail ``MoveToManager::MovementNode`` (acclient.h): a list link, a type and a heading.
+    Retail ``MoveToManager::MovementNode`` (acclient.h): a list link, a type and a ``float`` heading.
     """
 
     __slots__ = ("heading", "type")
 
     def __init__(self, type: MovementType, heading: float = 0.0) -> None:
         self.type = type
-        self.heading = heading
+        self.heading = f32(heading)
 
     def __repr__(self) -> str:
         return f"MovementNode({self.type.name}, {self.heading})"
@@ -415,8 +429,12 @@ class MoveToManager:
         """False when, more than 1 s after the last sample, the closing rate since that sample, or
         else since the start, is below 0.25 m/s. A passing sample becomes the new last sample.
 
+        ``curr_distance`` is a ``float`` parameter (stored into ``previous_distance``); the
+        rates stay double.
+
         Retail: MoveToManager::CheckProgressMade @ 0x005290F0 (acclient.c:344832)
         """
+        curr_distance = f32(curr_distance)
         now = self._now()
         elapsed = now - self.previous_distance_time
         if elapsed <= PROGRESS_INTERVAL:
@@ -460,6 +478,8 @@ class MoveToManager:
 
         The sticky bit is dropped: only a move to an object can stick.
 
+        The distance and the bearing are ``float`` locals (acclient.c:345818, 345831).
+
         Retail: MoveToManager::MoveToPosition @ 0x0052A240 (acclient.c:345789)
         """
         obj = self.physics_obj
@@ -468,8 +488,8 @@ class MoveToManager:
         obj.stop_completely()
         self.current_target_position = p.copy()
         self.sought_object_radius = 0.0
-        distance = self.get_current_distance()
-        bearing = position_heading(obj.position, p)
+        distance = f32(self.get_current_distance())
+        bearing = f32(position_heading(obj.position, p))
         command, _, _ = get_command(params, distance)
         if command:
             self.add_turn_to_heading_node(bearing)
@@ -503,8 +523,9 @@ class MoveToManager:
         obj.stop_completely()
         self.starting_position = obj.position.copy()
         self.sought_object_id = object_id
-        self.sought_object_radius = object_radius
-        self.sought_object_height = object_height
+        self.sought_object_radius, self.sought_object_height, _ = unpack3(
+            pack3(object_radius, object_height, 0.0)
+        )
         self.movement_type = MovementType.MOVE_TO_OBJECT
         self.top_level_object_id = top_level_id
         _copy_params(self.movement_params, params)
@@ -520,6 +541,9 @@ class MoveToManager:
         not already there and a final turn (bearing + ``desired_heading``) with
         ``USE_FINAL_HEADING``; start the first node.
 
+        The bearing, the distance and the final heading are ``float`` locals; the final
+        heading's wrap is decided on the double sum (acclient.c:345879-345898).
+
         Retail: MoveToManager::MoveToObject_Internal @ 0x0052A400 (acclient.c:345858)
         """
         obj = self.physics_obj
@@ -528,16 +552,17 @@ class MoveToManager:
             return
         self.sought_position = interpolated_position.copy()
         self.current_target_position = target_position.copy()
-        bearing = position_heading(obj.position, interpolated_position)
-        distance = self.get_current_distance()
+        bearing = f32(position_heading(obj.position, interpolated_position))
+        distance = f32(self.get_current_distance())
         command, _, _ = get_command(self.movement_params, distance)
         if command:
             self.add_turn_to_heading_node(bearing)
             self.add_move_to_position_node()
         if self.movement_params.flags & MovementFlags.USE_FINAL_HEADING:
-            final = bearing + self.movement_params.desired_heading
-            if final >= 360.0:
-                final -= 360.0
+            total = bearing + self.movement_params.desired_heading
+            final = f32(total)
+            if total >= 360.0:
+                final = f32(final - 360.0)
             self.add_turn_to_heading_node(final)
         self.initialized = True
         self.begin_next_node()
@@ -574,6 +599,8 @@ class MoveToManager:
         ``TurnToObject`` never set (it wrote ``current_target_position``'s, then replaced
         that position here).
 
+        The offset and the new heading are ``float`` locals (acclient.c:345923-345924).
+
         Retail: MoveToManager::TurnToObject_Internal @ 0x0052A550 (acclient.c:345910)
         """
         obj = self.physics_obj
@@ -581,8 +608,8 @@ class MoveToManager:
             self.cancel_move_to(MovementError.NO_PHYSICS_OBJECT)
             return
         self.current_target_position = target_position.copy()
-        offset = self.sought_position.frame.get_heading()
-        heading = math.fmod(position_heading(obj.position, self.current_target_position) + offset, 360.0)
+        offset = f32(self.sought_position.frame.get_heading())
+        heading = f32(math.fmod(position_heading(obj.position, self.current_target_position) + offset, 360.0))
         self.sought_position.frame.set_heading(heading)
         self.add_turn_to_heading_node(heading)
         self.initialized = True
@@ -639,13 +666,15 @@ class MoveToManager:
         """Start the move node: pick the command for the current distance; none means arrived
         (drop the node, go on); else issue it and take the first progress sample.
 
+        The distance is a ``float`` local (acclient.c:345396), stored as both progress samples.
+
         Retail: MoveToManager::BeginMoveForward @ 0x00529A00 (acclient.c:345370)
         """
         obj = self.physics_obj
         if obj is None:
             self.cancel_move_to(MovementError.NO_PHYSICS_OBJECT)
             return
-        distance = self.get_current_distance()
+        distance = f32(self.get_current_distance())
         command, hold_key, moving_away = get_command(self.movement_params, distance)
         if not command:
             self.remove_pending_actions_head()
@@ -670,7 +699,8 @@ class MoveToManager:
         clockwise difference is within (EPSILON, 180], ``TurnLeft`` when above 180; a
         difference of at most EPSILON finishes the node at once.
 
-        ``previous_heading`` is seeded with the heading *difference*, not a heading, as retail does.
+        ``previous_heading`` is seeded with the heading *difference*, not a heading, as retail does;
+        the difference is double until that ``float`` store.
 
         Retail: MoveToManager::BeginTurnToHeading @ 0x00529B90 (acclient.c:345455)
         """
@@ -699,7 +729,7 @@ class MoveToManager:
             self.cancel_move_to(err)
             return
         self.current_command = command
-        self.previous_heading = diff
+        self.previous_heading = f32(diff)
 
     def use_time(self) -> None:
         """Service the head node, only while the body has ``CONTACT`` and, for a move to an
@@ -735,6 +765,10 @@ class MoveToManager:
         The same parameter block serves every motion issued in one tick, so a
         speed rewritten by ``adjust_motion`` carries into the later stops, as in retail.
 
+        The bearing is spilled to a ``float``, the wanted heading and the distance are ``float``
+        locals (the wanted heading's wrap is decided on the double sum), the heading error
+        stays double (acclient.c:345626-345630, 345655).
+
         Retail: MoveToManager::HandleMoveToPosition @ 0x00529D80 (acclient.c:345576)
         """
         obj = self.physics_obj
@@ -746,11 +780,12 @@ class MoveToManager:
         if obj.motions_pending():
             self._stop_aux_command(params)
         else:
-            heading = position_heading(curr_pos, self.current_target_position) + get_desired_heading(
-                self.current_command, self.moving_away
+            total = get_desired_heading(self.current_command, self.moving_away) + f32(
+                position_heading(curr_pos, self.current_target_position)
             )
-            if heading >= 360.0:
-                heading -= 360.0
+            heading = f32(total)
+            if total >= 360.0:
+                heading = f32(heading - 360.0)
             error = _relative_heading(heading, obj.position.frame.get_heading())
             if error <= HEADING_TOLERANCE or error >= 360.0 - HEADING_TOLERANCE:
                 self._stop_aux_command(params)
@@ -760,7 +795,7 @@ class MoveToManager:
                     self._do_motion(turn, params)
                     self.aux_command = turn
 
-        distance = self.get_current_distance()
+        distance = f32(self.get_current_distance())
         if not self.check_progress_made(distance):
             if not obj.is_interpolating() and not obj.motions_pending():
                 self.fail_progress_count += 1
@@ -797,7 +832,8 @@ class MoveToManager:
         turning direction) snap to it exactly, stop the turn and start the next node; else
         count a stalled tick when the heading did not advance by (EPSILON, 180).
 
-        Without a turn command running, (re)start the node instead.
+        Without a turn command running, (re)start the node instead. The current heading is a
+        ``float`` local (acclient.c:345738), which becomes ``previous_heading``.
 
         Retail: MoveToManager::HandleTurnToHeading @ 0x0052A0C0 (acclient.c:345711)
         """
@@ -809,7 +845,7 @@ class MoveToManager:
             self.begin_turn_to_heading()
             return
         node = self.pending_actions[0]
-        curr_heading = obj.position.frame.get_heading()
+        curr_heading = f32(obj.position.frame.get_heading())
         if heading_greater(curr_heading, node.heading, self.current_command):
             self.fail_progress_count = 0
             obj.set_heading(node.heading)

@@ -8,10 +8,13 @@
 from __future__ import annotations
 
 import enum
+import struct
 from dataclasses import dataclass, field
 
 from acphys.math.position import Position
-from acphys.precision import f32
+from acphys.precision import f32, pack3, unpack3
+
+_F6 = struct.Struct("6f")
 
 
 class MovementType(enum.IntEnum):
@@ -101,7 +104,9 @@ class MovementParameters:
     """How a motion or a move-to is to be carried out.
 
     The defaults are those of the constructor (``distance_to_object`` is the
-    float32 0.6, bits 0x3F19999A).
+    float32 0.6, bits 0x3F19999A). The six distances, heading and speed are
+    ``float`` fields (acclient.h:31453): the constructor narrows them to float32,
+    and code that assigns one later stores a float32.
 
     Retail: MovementParameters::MovementParameters @ 0x00524380 (acclient.c:339436)
     """
@@ -116,6 +121,25 @@ class MovementParameters:
     context_id: int = 0
     hold_key_to_apply: HoldKey = HoldKey.INVALID
     action_stamp: int = 0
+
+    def __post_init__(self) -> None:
+        (
+            self.distance_to_object,
+            self.min_distance,
+            self.desired_heading,
+            self.speed,
+            self.fail_distance,
+            self.walk_run_threshhold,
+        ) = _F6.unpack(
+            _F6.pack(
+                self.distance_to_object,
+                self.min_distance,
+                self.desired_heading,
+                self.speed,
+                self.fail_distance,
+                self.walk_run_threshhold,
+            )
+        )
 
     def has(self, flag: MovementFlags) -> bool:
         """Whether ``flag`` is set in the bitfield."""
@@ -138,7 +162,7 @@ class MovementParameters:
 
 @dataclass
 class MovementStruct:
-    """A movement request (acclient.h ``MovementStruct``)."""
+    """A movement request (acclient.h ``MovementStruct``); ``radius`` and ``height`` are floats."""
 
     type: MovementType
     motion: int = 0
@@ -148,3 +172,7 @@ class MovementStruct:
     radius: float = 0.0
     height: float = 0.0
     params: MovementParameters = field(default_factory=MovementParameters)
+
+    def __post_init__(self) -> None:
+        if self.radius or self.height:  # the motion requests carry neither
+            self.radius, self.height, _ = unpack3(pack3(self.radius, self.height, 0.0))

@@ -13,6 +13,11 @@ worth (``1/framerate`` s) of the sequence's velocity and omega, and queues
 the frame's hooks on the body. A quantum that crosses no boundary moves
 nothing. The true quantum is used only when the list is empty or the
 framerate is zero (docs/01-physics.md section 4).
+
+Precision: ``velocity`` and ``omega`` are float32 vectors and each node's
+framerate a float32 (retail ``float`` fields); ``frame_number``, the frame
+quantum, the leftover time and the physics step ``1 / framerate`` stay double,
+as in ``update_internal``'s locals (acclient.c:340678-340683).
 """
 
 from __future__ import annotations
@@ -24,11 +29,42 @@ from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.motion.animation import F_EPSILON, AnimData, AnimFrame, AnimSequenceNode
+from acphys.precision import pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
 
 _floor = math.floor
+
+
+def combine_anim_frame(frame: Frame, pos: Frame) -> None:
+    """``frame = frame ∘ pos``: compose a position frame (retail ``AFrame``) onto ``frame`` in place.
+
+    The same composition as :meth:`Frame.combine`, with this overload's own order of the
+    quaternion's x sum (``x1·w2 + w1·x2 + z2·y1 - y2·z1``): with float32 operands and double
+    sums the order decides the last bit. The origin and the four components are ``float``
+    stores (acclient.c:340437-340457); ``frame`` must be cached.
+
+    Retail: Frame::combine @ 0x00525180 (acclient.c:340419)
+    """
+    m = frame.m
+    o = pos.origin
+    fo = frame.origin
+    fo.x, fo.y, fo.z = unpack3(
+        pack3(
+            m[6] * o.z + m[0] * o.x + m[3] * o.y + fo.x,
+            m[7] * o.z + m[1] * o.x + m[4] * o.y + fo.y,
+            m[8] * o.z + m[2] * o.x + m[5] * o.y + fo.z,
+        )
+    )
+    w1, x1, y1, z1 = frame.qw, frame.qx, frame.qy, frame.qz
+    w2, x2, y2, z2 = pos.qw, pos.qx, pos.qy, pos.qz
+    frame.set_rotate(
+        w1 * w2 - x1 * x2 - y2 * y1 - z2 * z1,
+        x1 * w2 + w1 * x2 + z2 * y1 - y2 * z1,
+        y2 * w1 - x1 * z2 + z1 * x2 + y1 * w2,
+        x1 * y2 + z2 * w1 - y1 * x2 + z1 * w2,
+    )
 
 
 class Sequence:
@@ -282,6 +318,10 @@ class Sequence:
         body's local space); the rotation goes through ``Frame::rotate``
         (skipped for an exactly zero omega, which ``Frame::grotate`` ignores).
 
+        The step stays double; the y and z translations are spilled into the ``float`` vector
+        local ``w`` before they are added to the origin, the x one is not, and the three
+        rotation components are ``float`` stores into ``w`` (acclient.c:339876-339888).
+
         Retail: CSequence::apply_physics @ 0x00524AB0 (acclient.c:339859)
         """
         scale = math.fabs(quantum)
@@ -289,9 +329,8 @@ class Sequence:
             scale = -scale
         v = self.velocity
         origin = frame.origin
-        origin.x += scale * v.x
-        origin.y += scale * v.y
-        origin.z += scale * v.z
+        dy, dz, _ = unpack3(pack3(scale * v.y, scale * v.z, 0.0))
+        origin.x, origin.y, origin.z = unpack3(pack3(scale * v.x + origin.x, dy + origin.y, dz + origin.z))
         w = self.omega
         if w.x != 0.0 or w.y != 0.0 or w.z != 0.0:
             frame.rotate(Vector3(scale * w.x, scale * w.y, scale * w.z))
@@ -357,7 +396,7 @@ class Sequence:
                     while last < end:
                         if frame is not None:
                             if pos_frames is not None:
-                                frame.combine(frame, pos_frames[last])
+                                combine_anim_frame(frame, pos_frames[last])
                             if step:
                                 self.apply_physics(frame, step, quantum)
                         if self.hook_obj is not None:
@@ -440,7 +479,7 @@ class Sequence:
         if node.animation.pos_frames is not None:
             pos = node.get_pos_frame(_floor(self.frame_number))
             if entering:
-                frame.combine(frame, pos)
+                combine_anim_frame(frame, pos)
             else:
                 frame.subtract1(frame, pos)
         framerate = node.framerate

@@ -11,8 +11,9 @@ effective Run / Jump skill and the burden into rates through
 
 :class:`Weenie` takes the inputs the client reads from its qualities: the
 effective skills (base, ranks, buffs and augmentations already added), the
-load (burden over capacity), whether stamina is above zero and whether a PK
-attack happened in the last 20 seconds.
+load (burden over capacity; a ``float`` local of the qualities code, kept as a
+float32), whether stamina is above zero and whether a PK attack happened in the
+last 20 seconds.
 
 The collision code (``CPhysicsObj::FindObjCollisions``, ``OBJECTINFO::init``) asks four more
 virtuals, each one bit of the object's public description (``pwd._bitfield``):
@@ -27,7 +28,7 @@ from __future__ import annotations
 
 import math
 
-from acphys.precision import f32
+from acphys.precision import f32, pack3, unpack3
 
 #: ``GetJumpHeight`` constants as the binary holds them (float32).
 _JUMP_SKILL_SPAN = f32(22.200001)
@@ -78,10 +79,11 @@ def get_run_rate(load: float, run_skill: int, scaling: float = 1.0) -> float:
     """The run rate (animation speed multiplier) for an effective Run skill.
 
     Exactly 800 skill gives 18/4 = 4.5; every other value follows the curve,
-    which tends to 15/4 (retail tests equality, not ``>=``).
+    which tends to 15/4 (retail tests equality, not ``>=``). ``load`` is a ``float`` parameter.
 
     Retail: MovementSystem::GetRunRate @ 0x006B0950 (acclient.c:713789)
     """
+    load = f32(load)
     skill = float(run_skill)
     if skill == 800.0:
         return 18.0 / 4.0
@@ -91,10 +93,12 @@ def get_run_rate(load: float, run_skill: int, scaling: float = 1.0) -> float:
 def get_jump_height(load: float, jump_skill: int, power: float, scaling: float = 1.0) -> float:
     """Jump height in metres for an effective Jump skill and a charge ``power`` (clamped to [0, 1]).
 
-    Never below 0.35 m.
+    Never below 0.35 m. ``load`` and ``power`` are ``float`` parameters, and so is the skill
+    once converted (``_powera``, acclient.c:713822; exact for any real skill); the height stays double.
 
     Retail: MovementSystem::GetJumpHeight @ 0x006B09B0 (acclient.c:713805)
     """
+    load, power, _ = unpack3(pack3(load, power, 0.0))
     power = min(max(power, 0.0), 1.0)
     skill = float(jump_skill)
     height = (
@@ -106,8 +110,11 @@ def get_jump_height(load: float, jump_skill: int, power: float, scaling: float =
 def jump_stamina_cost(power: float, load: float, pk: bool) -> int:
     """Stamina a jump of ``power`` costs: ``(power + 1) * 100`` right after PK combat, else a burden curve.
 
+    ``power`` and ``load`` are ``float`` parameters.
+
     Retail: MovementSystem::JumpStaminaCost @ 0x006B0A40 (acclient.c:713829)
     """
+    power, load, _ = unpack3(pack3(power, load, 0.0))
     if pk:
         return int((power + 1.0) * 100.0)
     return math.ceil((load + 0.5) * power * 8.0 + 2.0)
@@ -165,7 +172,7 @@ class Weenie:
         self.the_player = the_player
         self.run_skill = run_skill
         self.jump_skill = jump_skill
-        self.load = load
+        self.load = f32(load)
         self.stamina = stamina
         #: A PK or PK-lite whose last PK attack was under 20 s ago (prices jumps by power).
         self.recent_pk = recent_pk

@@ -124,7 +124,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             if "center" not in entry or "radius" not in entry:
                 raise ctx.fail(sphere_key, "a sphere needs center = [x, y, z] and radius")
             center = read.local_point(ctx, f"{sphere_key}.center", entry["center"])
-            radius = read.ranged(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+            radius = read.float32(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
             spheres.append(Sphere(center, radius))
         cylspheres = []
         for index, item in enumerate(
@@ -135,8 +135,8 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             if any(part not in entry for part in ("low_pt", "radius", "height")):
                 raise ctx.fail(cyl_key, "a cylsphere needs low_pt = [x, y, z], radius and height")
             low_pt = read.local_point(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
-            radius = read.ranged(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
-            height = read.ranged(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
+            radius = read.float32(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+            height = read.float32(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
             cylspheres.append(CylSphere(low_pt, radius, height))
 
         holding: dict[int, LocationType] = {}
@@ -156,11 +156,11 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
             if part not in (-1, 0) or isinstance(part, bool):
                 raise ctx.fail(f"{holding_key}.part", f"a scenario setup has one part: -1 or 0, got {part!r}")
             origin = read.local_point(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
-            heading = read.ranged(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
+            heading = read.float32(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
             holding[where] = LocationType(part & 0xFFFFFFFF, Frame.from_heading(origin, heading))
 
         def length(field: str) -> float:
-            return read.ranged(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)  # noqa: B023
+            return read.float32(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)  # noqa: B023
 
         motion_table = None
         if "motion_table" in table:
@@ -214,6 +214,7 @@ BODY_KEYS = (
     "motion_table",
     "run_skill",
     "jump_skill",
+    "npc",
 )
 
 
@@ -266,7 +267,7 @@ def _read_body(
             f"{key}.origin",
             f"x and y must be landblock-local, in [0, 192), got ({origin.x:g}, {origin.y:g})",
         )
-    heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+    heading = read.float32(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
 
     body_id = read.object_id(ctx, f"{key}.id", table["id"]) if "id" in table else None
     owner = world.get_object(body_id) if body_id is not None else None
@@ -275,15 +276,19 @@ def _read_body(
     body = PhysicsObj(world, name, PartArray(setup), body_id)
     if "state" in table:
         body.state = read.state(ctx, f"{key}.state", table["state"])
-    body.friction = read.ranged(ctx, f"{key}.friction", table.get("friction", body.friction), 0.0, 1.0)
-    body.elasticity = read.ranged(
+    body.friction = read.float32(ctx, f"{key}.friction", table.get("friction", body.friction), 0.0, 1.0)
+    body.elasticity = read.float32(
         ctx, f"{key}.elasticity", table.get("elasticity", body.elasticity), 0.0, MAX_ELASTICITY
     )
     body.set_scale_static(
-        read.ranged(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+        read.float32(ctx, f"{key}.scale", table.get("scale", 1.0), 0.0, 1000.0, open_low=True)
     )
-    if "run_skill" in table or "jump_skill" in table:
+    npc = read.boolean(ctx, f"{key}.npc", table.get("npc", False))
+    if npc or "run_skill" in table or "jump_skill" in table:
+        # A creature weenie; npc makes it one that is not the player (IsThePlayer false), so the
+        # motion interpreter replays its interpreted state, not its raw one (apply_current_movement).
         body.weenie_obj = Weenie(
+            the_player=not npc,
             run_skill=_skill(ctx, f"{key}.run_skill", table.get("run_skill", 0)),
             jump_skill=_skill(ctx, f"{key}.jump_skill", table.get("jump_skill", 0)),
         )

@@ -31,7 +31,7 @@ ACTION_KEYS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "set_omega": (("omega",), ()),
     "set_state": (("state",), ()),
     "motion": (("motion",), ("speed", "hold_run")),
-    "stop_motion": (("motion",), ("speed",)),
+    "stop_motion": (("motion",), ("speed", "hold_run")),
     "jump": ((), ("extent",)),
     "move_to": (("origin",), ("landblock", "distance", "min_distance", "speed", "hold_run", "fail_distance")),
     "turn_to": (("heading",), ("speed",)),
@@ -66,14 +66,19 @@ def _report(obj: PhysicsObj, label: str, error: int) -> None:
 
 
 def _params(ctx: Ctx, key: str, table: dict[str, Any]) -> MovementParameters:
-    """The retail default parameters with the event's speed and hold key."""
+    """The retail default parameters with the event's speed and hold key.
+
+    ``hold_run = true`` holds the run key (``HoldKey_Run``), ``false`` releases it
+    (``HoldKey_None``); without ``hold_run`` the parameters keep retail's default
+    ``HoldKey_Invalid``, which leaves the run key as it is, as the keyboard path
+    (``CommandInterpreter::MovePlayer``) sends it.
+    """
     params = MovementParameters()
     if "speed" in table:
-        params.speed = read.ranged(ctx, f"{key}.speed", table["speed"], 0.0, 100.0, open_low=True)
-    if read.boolean(ctx, f"{key}.hold_run", table.get("hold_run", False)):
-        params.hold_key_to_apply = HoldKey.RUN
-    else:
-        params.hold_key_to_apply = HoldKey.NONE
+        params.speed = read.float32(ctx, f"{key}.speed", table["speed"], 0.0, 100.0, open_low=True)
+    if "hold_run" in table:
+        held = read.boolean(ctx, f"{key}.hold_run", table["hold_run"])
+        params.hold_key_to_apply = HoldKey.RUN if held else HoldKey.NONE
     return params
 
 
@@ -87,7 +92,7 @@ def _motion_apply(ctx: Ctx, key: str, action: str, table: dict[str, Any]) -> App
 
 
 def _jump_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
-    extent = read.ranged(ctx, f"{key}.extent", table.get("extent", 1.0), 0.0, 1.0)
+    extent = read.float32(ctx, f"{key}.extent", table.get("extent", 1.0), 0.0, 1.0)
 
     def jump(obj: PhysicsObj) -> None:
         error, _stamina = obj.get_minterp().jump(extent)
@@ -107,7 +112,7 @@ def _position(ctx: Ctx, key: str, table: dict[str, Any], body: PhysicsObj) -> Po
         landblock = read.landblock(ctx, f"{key}.landblock", table["landblock"])
     else:
         landblock = landblock_of(body.position.objcell_id)
-    heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+    heading = read.float32(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
     return Position(outdoor_cell_id(landblock, origin), Frame.from_heading(origin, heading))
 
 
@@ -115,11 +120,11 @@ def _move_params(ctx: Ctx, key: str, table: dict[str, Any]) -> MovementParameter
     """The parameters of a move-to: speed and hold key, and the distances it stops and fails at."""
     params = _params(ctx, key, table)
     if "distance" in table:
-        params.distance_to_object = read.ranged(ctx, f"{key}.distance", table["distance"], 0.0, 1000.0)
+        params.distance_to_object = read.float32(ctx, f"{key}.distance", table["distance"], 0.0, 1000.0)
     if "min_distance" in table:
-        params.min_distance = read.ranged(ctx, f"{key}.min_distance", table["min_distance"], 0.0, 1000.0)
+        params.min_distance = read.float32(ctx, f"{key}.min_distance", table["min_distance"], 0.0, 1000.0)
     if "fail_distance" in table:
-        params.fail_distance = read.ranged(ctx, f"{key}.fail_distance", table["fail_distance"], 0.0, 1e6)
+        params.fail_distance = read.float32(ctx, f"{key}.fail_distance", table["fail_distance"], 0.0, 1e6)
     return params
 
 
@@ -164,7 +169,7 @@ def _to_object_apply(
 
 def _turn_to_apply(ctx: Ctx, key: str, table: dict[str, Any]) -> Apply:
     params = _params(ctx, key, table)
-    params.desired_heading = read.ranged(ctx, f"{key}.heading", table["heading"], 0.0, 360.0) % 360.0
+    params.desired_heading = read.float32(ctx, f"{key}.heading", table["heading"], 0.0, 360.0) % 360.0
 
     def turn(obj: PhysicsObj) -> None:
         obj.turn_to_heading(params.copy())
@@ -210,8 +215,8 @@ def _manager_apply(
         return unstick
     if action == "constrain_to":
         anchor = _position(ctx, key, table, body)
-        start = read.ranged(ctx, f"{key}.start", table["start"], 0.0, 1e4)
-        limit = read.ranged(ctx, f"{key}.max", table["max"], 0.0, 1e4)
+        start = read.float32(ctx, f"{key}.start", table["start"], 0.0, 1e4)
+        limit = read.float32(ctx, f"{key}.max", table["max"], 0.0, 1e4)
         if not limit > start:
             raise ctx.fail(f"{key}.max", f"must be more than start ({start:g}), got {limit:g}")
 
@@ -223,7 +228,11 @@ def _manager_apply(
     if action == "unconstrain":
 
         def unconstrain(obj: PhysicsObj) -> None:
-            obj.get_position_manager().unconstrain()
+            # PositionManager::UnConstrain on the body's manager: retail has no CPhysicsObj entry
+            # for it, and a body without a position manager has nothing to let go (making one
+            # would activate an inactive body).
+            if obj.position_manager is not None:
+                obj.position_manager.unconstrain()
             obj.record_event("unconstrain")
 
         return unconstrain
@@ -276,7 +285,7 @@ def _parent_apply(
                 f"{key}.part", f"expected -1 (the whole body) or a part below {parts}, got {part!r}"
             )
         origin = read.local_point(ctx, f"{key}.origin", table.get("origin", [0.0, 0.0, 0.0]))
-        heading = read.ranged(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
+        heading = read.float32(ctx, f"{key}.heading", table.get("heading", 0.0), -360.0, 360.0)
         frame = Frame.from_heading(origin, heading)
         attach = lambda obj: obj.set_parent(parent, part, frame)  # noqa: E731
 

@@ -21,7 +21,6 @@ from importlib import resources
 from typing import Any
 
 from acphys.math.frame import Frame
-from acphys.math.vector import Vector3
 from acphys.motion import anim_hooks
 from acphys.motion.animation import Animation, AnimData, AnimFrame
 from acphys.motion.commands import READY, SUBSTATE_MASK
@@ -32,7 +31,6 @@ from acphys.motion.motion_table import (
     MotionTable,
     cycle_key,
 )
-from acphys.precision import f32
 from acphys.scenario import values as read
 from acphys.scenario.values import Ctx, ScenarioError
 
@@ -97,7 +95,7 @@ def read_hook(ctx: Ctx, key: str, entry: dict[str, Any], where: str) -> anim_hoo
         elif name in ("ethereal", "no_draw"):
             args.append(read.boolean(ctx, f"{key}.{name}", entry[name]))
         else:
-            args.append(read.ranged(ctx, f"{key}.{name}", entry[name], 0.0, 1e6))
+            args.append(read.float32(ctx, f"{key}.{name}", entry[name], 0.0, 1e6))
     direction = read.string(ctx, f"{key}.direction", entry.get("direction", "both"))
     if direction not in _DIRECTIONS:
         raise ctx.fail(f"{key}.direction", f"expected one of {', '.join(_DIRECTIONS)}, got {direction!r}")
@@ -112,16 +110,12 @@ def _hook(ctx: Ctx, key: str, raw: Any, num_frames: int) -> tuple[int, anim_hook
     return frame, read_hook(ctx, key, entry, "frame")
 
 
-def _float32_vector(v: Vector3) -> Vector3:
-    return Vector3(f32(v.x), f32(v.y), f32(v.z))
-
-
 def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> MotionData:
     """One animation and its root motion, as the ``MotionData`` of a cycle, link or modifier."""
     for required in ("framerate", "frames"):
         if required not in entry:
             raise ctx.fail(f"{key}.{required}", "missing (an animation needs framerate and frames)")
-    framerate = f32(read.ranged(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0))
+    framerate = read.float32(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0)
     num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, 100000)
     low_frame = _count(ctx, f"{key}.low_frame", entry.get("low_frame", 0), 0, num_frames - 1)
     high_frame = _count(ctx, f"{key}.high_frame", entry.get("high_frame", -1), -1, num_frames - 1)
@@ -136,8 +130,8 @@ def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> Mo
         pos_frames = [Frame(origin=step) for _ in range(num_frames)]
     animation = Animation(frames, pos_frames, name=key)
 
-    velocity = _float32_vector(read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0])))
-    omega = _float32_vector(read.degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0])))
+    velocity = read.vector(ctx, f"{key}.velocity", entry.get("velocity", [0.0, 0.0, 0.0]))
+    omega = read.degrees_per_second(ctx, f"{key}.omega", entry.get("omega", [0.0, 0.0, 0.0]))
     return MotionData([AnimData(animation, low_frame, high_frame, framerate)], velocity, omega, bitfield)
 
 

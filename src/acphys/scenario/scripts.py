@@ -37,6 +37,7 @@ def read_scripts(ctx: Ctx, raw: Any) -> dict[str, int]:
             entry = read.table(ctx, where, item, ("at", *HOOK_KEYS))
             if "at" not in entry:
                 raise ctx.fail(f"{where}.at", "missing (a script hook needs at and kind)")
+            # PhysicsScriptData::start_time is a double (acclient.h:31994): not narrowed
             at = read.ranged(ctx, f"{where}.at", entry["at"], 0.0, 1e6)
             data.append(PhysicsScriptData(at, read_hook(ctx, where, entry, "at")))
         script_id = next(_SCRIPT_IDS)

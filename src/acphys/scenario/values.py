@@ -9,6 +9,7 @@ from typing import Any
 from acphys.flags import PhysicsState, flag_names, parse_flag_names
 from acphys.math.vector import Vector3
 from acphys.motion.commands import MOTION_IDS, STYLE_MASK, motion_id
+from acphys.precision import f32
 
 
 class ScenarioError(ValueError):
@@ -51,6 +52,16 @@ def ranged(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low:
         bracket = "(" if open_low else "["
         raise ctx.fail(key, f"expected a number in {bracket}{low:g}, {high:g}], got {result:g}")
     return result
+
+
+def float32(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low: bool = False) -> float:
+    """A number in ``[low, high]`` that the engine keeps in a ``float``: the float32 that retail's
+    data would hold (see :mod:`acphys.precision`). The range is checked on the number as written.
+
+    Scenario times (``duration``, ``driver_hz``, an event's ``at``) are the harness's own and stay
+    double; vectors are float32 already (:func:`vector` makes a ``Vector3``).
+    """
+    return f32(ranged(ctx, key, value, low, high, open_low=open_low))
 
 
 #: How far from its own origin a shape's geometry may reach, in metres (a wall, a house, a tower):

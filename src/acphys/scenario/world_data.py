@@ -63,7 +63,7 @@ def _whole_numbers(ctx: Ctx, key: str, value: Any, what: str, high: int) -> list
 def _height_table(ctx: Ctx, key: str, value: Any) -> list[float]:
     if not isinstance(value, list) or len(value) != HEIGHT_TABLE_SIZE:
         raise ctx.fail(key, f"expected {HEIGHT_TABLE_SIZE} heights in metres, got {read.kind(value)}")
-    return [read.ranged(ctx, f"{key}[{i}]", item, 0.0, MAX_LAND_HEIGHT) for i, item in enumerate(value)]
+    return [read.float32(ctx, f"{key}[{i}]", item, 0.0, MAX_LAND_HEIGHT) for i, item in enumerate(value)]
 
 
 def _water(ctx: Ctx, key: str, value: Any) -> list[int]:
@@ -113,7 +113,7 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
         elif "height" in entry:
             if "height_table" in entry:
                 raise ctx.fail(f"{key}.height_table", "only with heights (flat ground at height needs none)")
-            height = read.ranged(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
+            height = read.float32(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
             height_bytes, table = [0] * NUM_VERTICES, [height] * HEIGHT_TABLE_SIZE
         elif data.cell is not None:
             for extra in ("height_table", "water"):
@@ -248,8 +248,8 @@ def read_objects(ctx: Ctx, raw: Any, world: World, find_setup: SetupLookup) -> l
             raise ctx.fail(f"{key}.name", f"two objects are named {name!r}")
         landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
         origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
-        heading = read.ranged(ctx, f"{key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
-        scale = read.ranged(ctx, f"{key}.scale", entry.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+        heading = read.float32(ctx, f"{key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
+        scale = read.float32(ctx, f"{key}.scale", entry.get("scale", 1.0), 0.0, 1000.0, open_low=True)
         position = Position(cell_at(world, landblock, origin), Frame.from_heading(origin, heading))
         try:
             objects.append(add_static_object(world, name, setup, position, scale))
@@ -403,7 +403,7 @@ def read_buildings(ctx: Ctx, raw: Any, world: World) -> None:
                 f"rooms are axis-aligned boxes: expected a multiple of 90, got {raw_heading:g}",
             )
         heading = int(raw_heading % 360.0)
-        thickness = read.ranged(
+        thickness = read.float32(
             ctx, f"{key}.wall_thickness", entry.get("wall_thickness", 0.25), 0.0, 10.0, open_low=True
         )
         rooms = _read_rooms(ctx, f"{key}.rooms", entry["rooms"], origin, heading)

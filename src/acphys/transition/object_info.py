@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 from acphys.constants import EPSILON, FLOOR_Z
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_namespace
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 
 if TYPE_CHECKING:
     from acphys.geometry.plane import Plane
@@ -73,9 +74,9 @@ class ObjectInfo:
     ) -> None:
         self.object = obj
         self.state = ObjectInfoState(state)
-        self.scale = float(scale)
-        self.step_up_height = float(step_up_height)
-        self.step_down_height = float(step_down_height)
+        self.scale = f32(scale)
+        self.step_up_height = f32(step_up_height)
+        self.step_down_height = f32(step_down_height)
         self.ethereal = ethereal
         self.step_down = step_down
         #: ``targetID``.
@@ -109,6 +110,8 @@ class ObjectInfo:
         step heights (``CPhysicsObj::GetStepUpHeight``/``GetStepDownHeight``: the part array's,
         0 without one), ``ethereal`` from ETHEREAL, ``step_down`` unless MISSILE, and the
         weenie's IS_IMPENETRABLE / IS_PLAYER / IS_PK / IS_PKLITE bits. ``target_id`` is kept.
+        The step heights come back as doubles (setup height times scale z) and are narrowed
+        into their ``float`` fields (acclient.c:314128-314129).
 
         Retail: OBJECTINFO::init @ 0x0050CF30 (acclient.c:314117)
         """
@@ -116,8 +119,8 @@ class ObjectInfo:
         self.state = ObjectInfoState(object_state)
         self.scale = obj.scale
         parts = obj.part_array
-        self.step_up_height = parts.get_step_up_height() if parts is not None else 0.0
-        self.step_down_height = parts.get_step_down_height() if parts is not None else 0.0
+        self.step_up_height = f32(parts.get_step_up_height()) if parts is not None else 0.0
+        self.step_down_height = f32(parts.get_step_down_height()) if parts is not None else 0.0
         self.ethereal = bool(obj.state & PS.ETHEREAL)
         self.step_down = not obj.state & PS.MISSILE
         weenie = obj.weenie_obj
@@ -174,24 +177,32 @@ class ObjectInfo:
         that is not stepping down also gets the plane's normal as its collision normal. The
         divisions run as the x87 does them (a zero ``step_down_amt`` gives infinities, not an error).
 
+        ``float`` stores (acclient.c:314182-314269): ``water_depth`` (a parameter); for a viewer the
+        plane distance (the division reads it narrowed, the compare before it does not) and the
+        step's x and y (its z stays in the FPU); for a body the depth below the plane and the new
+        ``walk_interp``.
+
         Retail: OBJECTINFO::validate_walkable @ 0x0050D010 (acclient.c:314160)
         """
         state = self.state
         normal = contact_plane.N
         center = check_pos.center
         if state & OI.IS_VIEWER:
-            dist = normal.dot(center) + contact_plane.d - check_pos.radius
+            dist = normal.x * center.x + normal.y * center.y + center.z * normal.z + contact_plane.d
+            dist -= check_pos.radius
             if dist > -EPSILON:
                 return TS.OK
-            step = center - path.global_curr_center[0]
-            t = x87_divide(dist, step.z * normal.z + step.x * normal.x + step.y * normal.y)
+            curr = path.global_curr_center[0]
+            step_x, step_y = f32(center.x - curr.x), f32(center.y - curr.y)
+            step_z = center.z - curr.z
+            t = x87_divide(f32(dist), step_z * normal.z + step_x * normal.x + step_y * normal.y)
             if (
                 (t <= 0.0 or t > 1.0)
                 and path.begin_pos is not None
                 and (path.begin_pos.objcell_id & 0xFFFF) >= 0x100
             ):
                 return TS.OK
-            path.add_offset_to_check_pos(step * -t)
+            path.add_offset_to_check_pos(Vector3(step_x * -t, step_y * -t, step_z * -t))
             collisions.set_collision_normal(normal)
             collisions.collided_with_environment = True
             return TS.ADJUSTED
@@ -200,7 +211,7 @@ class ObjectInfo:
             + (center.z - check_pos.radius) * normal.z
             + center.x * normal.x
             + contact_plane.d
-            + water_depth
+            + f32(water_depth)
         )
         contact = path.step_down or not state & OI.ON_WALKABLE or self.is_valid_walkable(normal)
         if dist >= -EPSILON:
@@ -213,7 +224,7 @@ class ObjectInfo:
         else:
             if path.check_walkable:
                 return TS.COLLIDED
-            depth = x87_divide(dist, normal.z)
+            depth = f32(x87_divide(dist, normal.z))
             result = TS.OK
             if contact:
                 collisions.set_contact_plane(contact_plane, is_water)
@@ -223,7 +234,7 @@ class ObjectInfo:
                     interp = (1.0 - scale * depth) * path.walk_interp
                     if interp >= path.walk_interp or interp < -0.1:
                         return TS.COLLIDED
-                    path.walk_interp = interp
+                    path.walk_interp = f32(interp)
                 path.add_offset_to_check_pos(Vector3(0.0, 0.0, -depth))
                 result = TS.ADJUSTED
         if not state & OI.CONTACT and not path.step_down:

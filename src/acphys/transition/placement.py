@@ -46,8 +46,9 @@ PLACEMENT_ADJUST_DISTANCE = 4.0
 PLACEMENT_MIN_RADIUS = f32(0.48)
 #: ``find_placement_pos``: below this radius the sphere is a "fake" one (half the reach).
 PLACEMENT_FAKE_RADIUS = 0.125
-#: The pi literal ``find_placement_pos`` spaces the candidates around a ring with (acclient.c:313096).
-PLACEMENT_PI = 3.1415999
+#: The pi literal ``find_placement_pos`` spaces the candidates around a ring with (acclient.c:313096):
+#: a ``float`` constant (the decompiler's eight digits), ``f32(3.1416)``.
+PLACEMENT_PI = f32(3.1415999)
 
 
 def placement_insert(transition: Transition) -> TransitionState:
@@ -131,6 +132,10 @@ def find_placement_pos(transition: Transition) -> bool:
     step (spacing / r * 3.1415999) so far) candidates at even compass headings from 0. Each
     candidate offset goes through ``adjust_offset``; one shorter than EPSILON is skipped.
 
+    ``float`` locals (acclient.c:313072-313134): the radius, the reach, the spacing, the angle
+    step, the running distance and angle sum (the ring's count is the ceiling of the sum before
+    it is stored), the heading step and each heading.
+
     Retail: CTransition::find_placement_pos @ 0x0050BA50 (acclient.c:313014)
     """
     path = transition.sphere_path
@@ -158,9 +163,10 @@ def find_placement_pos(transition: Transition) -> bool:
     total_rad = 0.0
     for _ in range(num_steps):
         distance = f32(distance + dist_per_step)
-        total_rad = f32(total_rad + d_num_radial)
-        num_rad = 2 * math.ceil(total_rad)
-        angle_offset = 360.0 / num_rad
+        rad_sum = d_num_radial + total_rad
+        total_rad = f32(rad_sum)
+        num_rad = 2 * math.ceil(rad_sum)
+        angle_offset = f32(360.0 / num_rad)
         offset_frame = Frame()
         for ja in range(num_rad):
             _reset_check_pos(transition)
@@ -208,11 +214,11 @@ def find_placement_position(transition: Transition) -> bool:
         path.insert_type = InsertType.TRANSITION
         sphere = path.global_sphere[0]
         if path.num_sphere < 2 and sphere.radius + sphere.radius < step_down_ht:
-            step_down_ht = sphere.radius * 0.5
+            step_down_ht = f32(sphere.radius * 0.5)
         if sphere.radius + sphere.radius >= step_down_ht:
             stepped = transition.step_down(step_down_ht, LANDING_Z)
         else:
-            half = step_down_ht * 0.5
+            half = f32(step_down_ht * 0.5)
             stepped = transition.step_down(half, LANDING_Z) or transition.step_down(half, LANDING_Z)
         if not stepped:
             path.restore_check_pos()

@@ -14,12 +14,15 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import get_block_offset
 from acphys.math.position import Position
 from acphys.math.vector import Vector3, zero_vector
+from acphys.precision import f32, pack3, unpack3
 
 if TYPE_CHECKING:
     from acphys.geometry.polygon import Polygon
     from acphys.transition.collision_info import CollisionInfo
     from acphys.transition.object_info import ObjectInfo
     from acphys.world.obj_cell import ObjCell
+
+_new = object.__new__
 
 
 class InsertType(enum.IntEnum):
@@ -164,11 +167,17 @@ class SpherePath:
         """Take the first two of ``spheres``, scaled, as the local spheres; the low point is the
         bottom of the first one.
 
+        ``scale`` is a ``float`` parameter; the scaled centres and radii are ``float`` stores
+        (acclient.c:313673-313681), so a 0.2-m sphere sweeps with radius ``f32(0.2)``.
+
         Retail: SPHEREPATH::init_sphere @ 0x0050C670 (acclient.c:313646)
         """
         if not spheres:
             raise ValueError("SPHEREPATH.init_sphere: a sweep needs at least one sphere")
-        self.local_sphere = [Sphere(sphere.center * scale, sphere.radius * scale) for sphere in spheres[:2]]
+        scale = f32(scale)
+        self.local_sphere = [
+            Sphere.owning(sphere.center * scale, f32(scale * sphere.radius)) for sphere in spheres[:2]
+        ]
         first = self.local_sphere[0]
         self.local_low_point = Vector3(first.center.x, first.center.y, first.center.z - first.radius)
 
@@ -197,13 +206,32 @@ class SpherePath:
     def cache_global_curr_center(self) -> None:
         """Place each local sphere centre in ``curr_pos``'s frame as ``global_curr_center``.
 
+        The sums run in retail's order, which is not ``Frame::localtoglobal``'s
+        (acclient.c:313724-313741).
+
         Retail: SPHEREPATH::cache_global_curr_center @ 0x0050C740 (acclient.c:313696)
         """
         frame = self.curr_pos.frame
-        self.global_curr_center = [frame.localtoglobal(sphere.center) for sphere in self.local_sphere]
+        m, o = frame.m, frame.origin
+        centers = []
+        for sphere in self.local_sphere:
+            c = sphere.center
+            v = _new(Vector3)
+            v.x, v.y, v.z = unpack3(
+                pack3(
+                    c.x * m[0] + c.y * m[3] + c.z * m[6] + o.x,
+                    m[7] * c.z + c.x * m[1] + m[4] * c.y + o.y,
+                    m[8] * c.z + m[5] * c.y + m[2] * c.x + o.z,
+                )
+            )
+            centers.append(v)
+        self.global_curr_center = centers
 
     def cache_global_sphere(self, offset: Vector3 | None) -> None:
         """Move the global spheres and low point by ``offset``; with None, rebuild them at ``check_pos``.
+
+        The rebuilt centres sum in retail's order (acclient.c:313809-313826); the low point in
+        ``Frame::localtoglobal``'s (acclient.c:313830-313847).
 
         Retail: SPHEREPATH::cache_global_sphere @ 0x0050C810 (acclient.c:313747)
         """
@@ -212,9 +240,22 @@ class SpherePath:
                 sphere.center = sphere.center + offset
             self.global_low_point = self.global_low_point + offset
             return
-        l2g = self.check_pos.frame.localtoglobal
-        self.global_sphere = [Sphere.owning(l2g(s.center), s.radius) for s in self.local_sphere]
-        self.global_low_point = l2g(self.local_low_point)
+        frame = self.check_pos.frame
+        m, o = frame.m, frame.origin
+        spheres = []
+        for sphere in self.local_sphere:
+            c = sphere.center
+            v = _new(Vector3)
+            v.x, v.y, v.z = unpack3(
+                pack3(
+                    c.x * m[0] + c.y * m[3] + c.z * m[6] + o.x,
+                    m[7] * c.z + c.x * m[1] + m[4] * c.y + o.y,
+                    m[8] * c.z + m[2] * c.x + m[5] * c.y + o.z,
+                )
+            )
+            spheres.append(Sphere.owning(v, sphere.radius))
+        self.global_sphere = spheres
+        self.global_low_point = frame.localtoglobal(self.local_low_point)
 
     def add_offset_to_check_pos(self, offset: Vector3, radius: float | None = None) -> None:
         """Move ``check_pos`` and the global spheres by ``offset``; the cell array goes stale.
@@ -286,7 +327,7 @@ class SpherePath:
         self.walkable = poly
         self.walkable_up = zaxis.copy()
         self.walkable_pos = local_pos.copy()
-        self.walkable_scale = scale
+        self.walkable_scale = f32(scale)
 
     def set_walkable_check_pos(self, sphere: Sphere) -> None:
         """Retail: SPHEREPATH::set_walkable_check_pos @ 0x00509CE0 (acclient.c:311550)"""
@@ -314,25 +355,30 @@ class SpherePath:
         ``localspace_pos`` is a copy of ``p``; ``localspace_z`` the global up axis in ``p``'s
         frame; ``localspace_low_point`` the bottom of localspace sphere 0 along it.
 
+        ``scale`` is a ``float`` parameter and its reciprocal a ``float`` local; the low point's
+        y and z offsets are spilled to ``float``, its x offset is not (acclient.c:313949-313958).
+
         Retail: SPHEREPATH::cache_localspace_sphere @ 0x0050C9D0 (acclient.c:313851)
         """
+        scale = f32(scale)
         if scale == 0.0:
             raise ValueError("cache_localspace_sphere: scale must not be 0")
-        inv = 1.0 / scale
+        inv = f32(1.0 / scale)
         self.localspace_sphere = []
         self.localspace_curr_center = []
         for sphere in self.local_sphere:
             center = p.localtolocal(self.check_pos, sphere.center)
-            self.localspace_sphere.append(Sphere.owning(center * inv, inv * sphere.radius))
+            self.localspace_sphere.append(Sphere.owning(center * inv, f32(inv * sphere.radius)))
             self.localspace_curr_center.append(p.localtolocal(self.curr_pos, sphere.center) * inv)
         self.localspace_pos = p.copy()
         m = p.frame.m
-        self.localspace_z = Vector3(
+        z = self.localspace_z = Vector3(
             (m[1] + m[0]) * 0.0 + m[2], (m[4] + m[3]) * 0.0 + m[5], (m[7] + m[6]) * 0.0 + m[8]
         )
         if self.localspace_sphere:
             low = self.localspace_sphere[0]
-            self.localspace_low_point = low.center - self.localspace_z * low.radius
+            c, r = low.center, low.radius
+            self.localspace_low_point = Vector3(c.x - r * z.x, c.y - f32(r * z.y), c.z - f32(r * z.z))
 
     def adjust_check_pos(self, cell_id: int) -> None:
         """Re-home ``check_pos`` into ``cell_id``; for an outdoor cell (low word below 0x100) the
@@ -355,6 +401,9 @@ class SpherePath:
         it (``CSphere::slide_sphere``). ``walkable`` is cleared either way and ``step_up`` on a
         slide; with no crossed edge the result is COLLIDED.
 
+        Of the step (across blocks) only its z difference and its x total are ``float`` spills
+        (acclient.c:314022-314026); the rest stays in the FPU.
+
         Retail: SPHEREPATH::precipice_slide @ 0x0050CC80 (acclient.c:313979)
         """
         if self.walkable is None:
@@ -366,11 +415,13 @@ class SpherePath:
         self.step_up = False
         normal = self.walkable_pos.frame.localtoglobalvec(edge)
         block = get_block_offset(self.curr_pos.objcell_id, self.check_pos.objcell_id)
-        step = self.global_sphere[0].center - self.global_curr_center[0]
-        along = normal.z * (block.z + step.z) + (block.y + step.y) * normal.y + (block.x + step.x) * normal.x
+        center, curr = self.global_sphere[0].center, self.global_curr_center[0]
+        step_x, step_y, step_z = center.x - curr.x, center.y - curr.y, f32(center.z - curr.z)
+        along_x = f32(block.x + step_x)
+        along = normal.z * (block.z + step_z) + (block.y + step_y) * normal.y + along_x * normal.x
         if along > 0.0:
-            normal = normal * -1.0
-        return self.global_sphere[0].slide_sphere_normal(self, collisions, normal, self.global_curr_center[0])
+            normal = -normal
+        return self.global_sphere[0].slide_sphere_normal(self, collisions, normal, curr)
 
     def check_walkables(self) -> bool:
         """Whether the sphere still stands on the recorded walkable polygon; True if none.

@@ -10,10 +10,14 @@ step-up, step-down, edge and cliff slides), and accepted or rolled back by
 ``SPHEREPATH`` lives in :mod:`acphys.transition.sphere_path` (re-exported here); placements
 (``find_placement_position`` and its helpers) in :mod:`acphys.transition.placement`.
 
-Retail keeps ten ``CTransition`` objects in a static pool and hands out the next one per
-nesting level (``makeTransition``); acphys makes a fresh transition per sweep and keeps only the
-nesting count, so fields a retail pool entry carries over from an earlier sweep (stale planes
-and normals behind cleared validity flags) start from their defaults here.
+Sweeps take their transition from retail's static pool of ten (``Transition.make_transition``,
+``CTransition::makeTransition``): one per nesting level, built once and reused, for the body's
+sweeps (``CPhysicsObj::transition``), its placements (``SetPosition``) and its collision checks.
+Handing one out runs ``init``, which resets only what ``CTransition::init`` resets (the object
+info's object, state and target, ``SPHEREPATH::init``'s fields, ``COLLISIONINFO``'s flags and
+counters, the cell array); the rest (positions, planes and normals behind cleared validity flags,
+walkable and step records) carries over from the last sweep that used the slot, as in the client.
+A ``Transition(...)`` built directly (the tests do) starts from the defaults.
 
 Not ported: ``find_transitional_position``'s placement-insert branch (acclient.c:313288-313297):
 it runs only for a path whose ``insert_type`` is not TRANSITION, and ``find_valid_position``
@@ -45,6 +49,7 @@ from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import adjust_to_outside, get_block_offset
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo, x87_divide
 from acphys.transition.sphere_path import InsertType, SpherePath
@@ -64,7 +69,7 @@ OI = member_namespace(ObjectInfoState)
 #: ``makeTransition`` hands out at most ten nested transitions (acclient.c:312564).
 MAX_TRANSITION_LEVEL = 10
 #: The step-down (and step-up) height of a body not on walkable ground (acclient.c:312807, 312966).
-SMALL_STEP_DOWN_HEIGHT = 0.039999999
+SMALL_STEP_DOWN_HEIGHT = f32(0.039999999)
 
 
 class Transition:
@@ -269,44 +274,57 @@ class Transition:
         EPSILON into a dry contact plane with a cell is lifted onto it when the lift is less
         than its radius. Without a contact plane the step loses its part into the sliding normal.
 
+        The dot products run in retail's orders. ``float`` stores (acclient.c:311909-311995):
+        the step's component into the plane (a local), and of each product subtracted from the
+        step only the ones the decompilation spills (z into the plane; y and z into the sliding
+        normal); the sphere's centre moved across blocks stays in the FPU.
+
         Retail: CTransition::adjust_offset @ 0x0050A370 (acclient.c:311863)
         """
         info = self.collision_info
         path = self.sphere_path
         new_offset = offset.copy()
+        x, y, z = new_offset.x, new_offset.y, new_offset.z
         sliding = info.sliding_normal
         slide = False
         if info.sliding_normal_valid:
-            if new_offset.dot(sliding) < 0.0:
+            if z * sliding.z + y * sliding.y + x * sliding.x < 0.0:
                 slide = True
             else:
                 info.sliding_normal_valid = False
         if info.contact_plane_valid:
             plane = info.contact_plane
             n = plane.N
-            into_plane = new_offset.z * n.z + new_offset.y * n.y + new_offset.x * n.x
+            into_plane = f32(z * n.z + y * n.y + x * n.x)
             if slide:
                 line = Vector3(
                     sliding.z * n.y - sliding.y * n.z,
                     sliding.x * n.z - sliding.z * n.x,
                     sliding.y * n.x - sliding.x * n.y,
                 )
-                new_offset = Vector3() if line.normalize_check_small() else line * line.dot(new_offset)
+                if line.normalize_check_small():
+                    new_offset = Vector3()
+                else:
+                    along = line.z * z + line.y * y + line.x * x
+                    new_offset = Vector3(line.x * along, line.y * along, line.z * along)
             elif into_plane <= 0.0:
-                new_offset = new_offset - n * into_plane
+                new_offset = Vector3(x - into_plane * n.x, y - into_plane * n.y, z - f32(into_plane * n.z))
             else:
                 plane.snap_to_plane(new_offset)
             if not info.contact_plane_is_water and info.contact_plane_cell_id:
                 block = get_block_offset(path.check_pos.objcell_id, info.contact_plane_cell_id)
                 sphere = path.global_sphere[0]
-                center = sphere.center - block
-                dist = center.z * n.z + center.y * n.y + center.x * n.x + plane.d
+                c = sphere.center
+                dist = (c.z - block.z) * n.z + (c.y - block.y) * n.y + (c.x - block.x) * n.x + plane.d
                 if dist < sphere.radius - EPSILON:
                     lift = x87_divide(sphere.radius - dist, n.z)
                     if sphere.radius > abs(lift):
                         path.add_offset_to_check_pos(Vector3(0.0, 0.0, lift))
         elif slide:
-            new_offset = new_offset - sliding * new_offset.dot(sliding)
+            along = x * sliding.x + z * sliding.z + y * sliding.y
+            new_offset = Vector3(
+                x - along * sliding.x, y - f32(along * sliding.y), z - f32(along * sliding.z)
+            )
         return new_offset
 
     def find_transitional_position(self) -> bool:
@@ -342,7 +360,7 @@ class Transition:
             return True
         for step in range(num_steps):
             if obj.state & OI.IS_VIEWER and step == num_steps - 1:
-                dist = offset.length()
+                dist = math.sqrt(offset.z * offset.z + offset.y * offset.y + offset.x * offset.x)
                 if dist > EPSILON:
                     rest = (dist - path.local_sphere[0].radius * (num_steps - 1)) / dist
                     offset_per_step = offset * rest
@@ -391,6 +409,11 @@ class Transition:
         place with no cell (re-homed to the outdoor cell id under it), or, off the world,
         COLLIDED.
 
+        The walk reads the live cell array, entry by entry up to its current length, as retail
+        does (acclient.c:312404-312424): a cell's ``find_collisions`` may step up or down, whose
+        nested insert rebuilds the array, and the walk then goes on from the same index in the
+        rebuilt one.
+
         Retail: CTransition::check_other_cells @ 0x0050AE50 (acclient.c:312380)
         """
         path = self.sphere_path
@@ -398,8 +421,11 @@ class Transition:
         path.cell_array_valid = True
         path.hits_interior_cell = False
         new_cell = self._find_cell_list(want_cell=True)
-        for cell_info in list(self.cell_array.cells):
-            cell = cell_info.cell
+        cell_array = self.cell_array
+        index = 0
+        while index < len(cell_array.cells):
+            cell = cell_array.cells[index].cell
+            index += 1
             if cell is None or cell is curr_cell:
                 continue
             ts = cell.find_collisions(self)
@@ -460,7 +486,8 @@ class Transition:
         known, else with ``step_up_normal`` as the collision normal); a back-face hit slides
         or steps up; a body that was in contact and found no contact plane steps down (its
         step-down height, halved once and tried twice when over two radii, 0.04 off walkable
-        ground) and, failing that, edge-slides. No check cell: OK.
+        ground) and, failing that, edge-slides. No check cell: OK. The step-down height and
+        its z are ``float`` locals (acclient.c:312966-312993).
 
         Retail: CTransition::transitional_insert @ 0x0050B6F0 (acclient.c:312833)
         """
@@ -513,11 +540,11 @@ class Transition:
             path.save_check_pos()
             radius = path.global_sphere[0].radius
             if path.num_sphere < 2 and radius + radius < step_down_ht:
-                step_down_ht = radius * 0.5
+                step_down_ht = f32(radius * 0.5)
             if radius + radius >= step_down_ht:
                 stepped = self.step_down(step_down_ht, z_val)
             else:
-                step_down_ht = step_down_ht * 0.5
+                step_down_ht = f32(step_down_ht * 0.5)
                 stepped = self.step_down(step_down_ht, z_val) or self.step_down(step_down_ht, z_val)
             if stepped:
                 path.walkable = None
@@ -561,7 +588,8 @@ class Transition:
         polygon. Otherwise the candidate is probed one insert lower by the step-down height
         (half a radius for a one-sphere body whose height exceeds two radii, then halved once
         more if still over two radii) with ``check_walkable`` set, and restored; ground is
-        there when that insert did not come back OK.
+        there when that insert did not come back OK. ``z_chk`` is a ``float`` parameter; the
+        probe height stays in the FPU until the offset stores it (acclient.c:312502-312514).
 
         Retail: CTransition::check_walkable @ 0x0050AFF0 (acclient.c:312474)
         """
@@ -571,7 +599,7 @@ class Transition:
         backup_pos = path.check_pos.copy()
         backup_cell = path.check_cell
         step_down_ht = self.object_info.step_down_height
-        path.walkable_allowance = z_chk
+        path.walkable_allowance = f32(z_chk)
         path.check_walkable = True
         radius = path.global_sphere[0].radius
         if path.num_sphere < 2 and step_down_ht > radius + radius:
@@ -587,12 +615,14 @@ class Transition:
     def step_down(self, step_down_ht: float, z_val: float) -> bool:
         """Lower the candidate by ``step_down_ht`` (not during a step-up) and insert it; True
         when it lands on a contact plane with normal z ≥ ``z_val`` (for EDGE_SLIDE bodies with
-        walkable ground under it) and a placement re-insert there is OK.
+        walkable ground under it) and a placement re-insert there is OK. Both arguments are
+        ``float`` parameters (acclient.c:312628).
 
         Retail: CTransition::step_down @ 0x0050B2A0 (acclient.c:312628)
         """
         path = self.sphere_path
         info = self.collision_info
+        step_down_ht, z_val = f32(step_down_ht), f32(z_val)
         path.neg_poly_hit = False
         path.step_down = True
         path.step_down_amt = step_down_ht
@@ -614,7 +644,8 @@ class Transition:
     def step_up(self, collision_normal: Vector3) -> bool:
         """Try to climb what sphere 0 ran into (``collision_normal``): a step-down by the
         step-up height onto walkable ground (0.04 onto landing ground off walkable ground)
-        from the saved candidate, which is restored if the step fails.
+        from the saved candidate, which is restored if the step fails. The height and the
+        walkable z are ``float`` locals (acclient.c:312799-312814).
 
         Retail: CTransition::step_up @ 0x0050B610 (acclient.c:312793)
         """
@@ -703,7 +734,8 @@ class Transition:
 
         The horizontal direction across the crease (``z × (N × N_last)``) becomes the collision
         normal, facing against the step; the candidate moves by the step's component along it.
-        OK when the planes are parallel.
+        OK when the planes are parallel. Of the step (across blocks) only its z difference and its
+        x total are ``float`` spills (acclient.c:312047-312053).
 
         Retail: CTransition::cliff_slide @ 0x0050A6D0 (acclient.c:312004)
         """
@@ -718,8 +750,10 @@ class Transition:
         if normal.normalize_check_small():
             return TS.OK
         block = get_block_offset(path.curr_pos.objcell_id, path.check_pos.objcell_id)
-        step = path.global_sphere[0].center - path.global_curr_center[0]
-        along = (block.z + step.z) * normal.z + (block.y + step.y) * normal.y + (block.x + step.x) * normal.x
+        center, curr = path.global_sphere[0].center, path.global_curr_center[0]
+        step_x, step_y, step_z = center.x - curr.x, center.y - curr.y, f32(center.z - curr.z)
+        along_x = f32(block.x + step_x)
+        along = (block.z + step_z) * normal.z + (block.y + step_y) * normal.y + along_x * normal.x
         if along <= 0.0:
             path.add_offset_to_check_pos(normal * along)
             info.set_collision_normal(normal)

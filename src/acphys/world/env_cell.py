@@ -44,6 +44,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32, pack3, unpack3
 from acphys.transition.transition import InsertType
 from acphys.world.obj_cell import CellArray, CellSource, CellTransition, ObjCell
 
@@ -205,6 +206,18 @@ def _portal_dist(portal: Polygon, local: Vector3) -> float:
     return local.y * n.y + local.z * n.z + local.x * n.x + portal.plane.d
 
 
+def _outside_portal_dist(frame: Frame, portal: Polygon, center: Vector3) -> float:
+    """The signed distance from ``portal``'s plane to the global ``center`` taken into ``frame``,
+    as the outside-portal test inlines ``globaltolocal``: the offset from the origin stays double,
+    the local x and y are spilled to ``float``, the local z is not (acclient.c:348310-348320).
+    """
+    m, o = frame.m, frame.origin
+    dx, dy, dz = center.x - o.x, center.y - o.y, center.z - o.z
+    lx, ly, _ = unpack3(pack3(dx * m[0] + dz * m[2] + dy * m[1], dx * m[3] + dz * m[5] + dy * m[4], 0.0))
+    n = portal.plane.N
+    return (dz * m[8] + dy * m[7] + dx * m[6]) * n.z + ly * n.y + lx * n.x + portal.plane.d
+
+
 def _part_portal_dist(cell_pos: Position, part: PhysicsPart, sphere: Sphere, portal: Polygon) -> float:
     """The signed distance from ``portal``'s plane to the part's sphere centre, in the cell's frame."""
     return _portal_dist(portal, cell_pos.localtolocal(part.pos, sphere.center))
@@ -302,15 +315,21 @@ class EnvCell(ObjCell):
         - an unloaded other cell is added (as an id) when some sphere is, on portal side 1, above
           ``-(radius + EPSILON)`` from the portal plane, or on side 0 below ``radius + EPSILON``.
 
+        The two portal tests differ in what is stored: the outside test inlines the transform
+        (see ``_outside_portal_dist``) and keeps ``radius + EPSILON`` in a ``float`` local
+        (acclient.c:348315); the unloaded-cell test stores the local centre (a ``Vector3``) and
+        keeps the reach in a register (acclient.c:348371).
+
         Retail: CEnvCell::find_transit_cells @ 0x0052C820 (acclient.c:348249)
         """
         check_outside = False
-        to_local = self.pos.frame.globaltolocal
+        frame = self.pos.frame
+        to_local = frame.globaltolocal
         for portal in self.portals:
             if portal.other_cell_id == OUTSIDE_CELL_ID:
                 for sphere in spheres:
-                    reach = sphere.radius + EPSILON
-                    dist = _portal_dist(portal.portal, to_local(sphere.center))
+                    reach = f32(sphere.radius + EPSILON)
+                    dist = _outside_portal_dist(frame, portal.portal, sphere.center)
                     if -reach < dist < reach:
                         check_outside = True
                         break
@@ -345,6 +364,7 @@ class EnvCell(ObjCell):
         to the outside marks the outdoor cells for after the loop (``add_all_outside_cells`` for
         the parts); an unloaded other cell is added as an id; a loaded one is added when the box,
         in its frame, intersects its cell BSP, and otherwise the next part is tried.
+        ``radius + EPSILON`` is a ``float`` local (acclient.c:348462-348466).
 
         Retail: CEnvCell::find_transit_cells @ 0x0052CAE0 (acclient.c:348406)
         """
@@ -356,7 +376,7 @@ class EnvCell(ObjCell):
                 sphere = part.get_sphere()
                 if sphere is None:
                     continue
-                reach = sphere.radius + EPSILON
+                reach = f32(sphere.radius + EPSILON)
                 dist = _part_portal_dist(self.pos, part, sphere, portal.portal)
                 if (side == 0 and dist > reach) or (side == 1 and dist < -reach):
                     continue
@@ -388,6 +408,7 @@ class EnvCell(ObjCell):
         in this cell's frame crosses the plane or lies wholly on the ``Sidedness`` equal to
         ``portal_side``, and whose box intersects the cell BSP adds this cell, and the cells the
         parts reach from it (``find_transit_cells_for_parts``). ``portal_id < 0``: nothing.
+        ``radius + EPSILON`` is a ``float`` local (acclient.c:348199-348204).
 
         Retail: CEnvCell::check_building_transit @ 0x0052C680 (acclient.c:348153)
         """
@@ -403,7 +424,7 @@ class EnvCell(ObjCell):
             sphere = part.get_sphere()
             if sphere is None:
                 continue
-            reach = sphere.radius + EPSILON
+            reach = f32(sphere.radius + EPSILON)
             dist = _part_portal_dist(self.pos, part, sphere, portal.portal)
             if (side == 1 and dist > reach) or (side == 0 and dist < -reach):
                 continue

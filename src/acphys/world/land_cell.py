@@ -51,6 +51,7 @@ from acphys.math.cell_id import (
 )
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
+from acphys.precision import pack3, unpack3
 from acphys.world.obj_cell import CellArray, CellTransition, ObjCell
 from acphys.world.terrain import TERRAIN_SURF_CHAR, SurfChar, WaterType
 
@@ -331,7 +332,8 @@ class LandCell(SortCell):
         """Add the neighbours of cell ``(x, y)`` that a circle reaches: ``pt`` is its centre
         within the cell, and a coordinate above ``incell_max`` (24 - r) or below
         ``incell_min`` (r) crosses that side; the corner cells come with the east and west
-        neighbours.
+        neighbours. ``pt`` and the two bounds are ``float`` (a ``Vec2D`` and two ``float``
+        parameters): the caller passes float32s.
 
         Retail: CLandCell::check_add_cell_boundary @ 0x00533260 (acclient.c:355161)
         """
@@ -360,6 +362,9 @@ class LandCell(SortCell):
         overlap, sphere by sphere; the first sphere off the world ends the walk. With no
         spheres, the cell under ``p``'s origin.
 
+        The point within its cell (``pt1``, a ``Vec2D``) and ``max_rad = 24 - radius`` are
+        ``float`` locals (acclient.c:355389-355392), so the far-side test compares two float32s.
+
         Retail: CLandCell::add_all_outside_cells @ 0x00533630 (acclient.c:355345)
         """
         if cell_array.added_outside:
@@ -377,15 +382,19 @@ class LandCell(SortCell):
             cell_id = adjust_to_outside(p.objcell_id, point)
             if not cell_id:
                 break
-            in_cell = (
-                point.x - math.floor(point.x / CELL_LENGTH) * CELL_LENGTH,
-                point.y - math.floor(point.y / CELL_LENGTH) * CELL_LENGTH,
+            radius = sphere.radius
+            in_x, in_y, max_rad = unpack3(
+                pack3(
+                    point.x - math.floor(point.x / CELL_LENGTH) * CELL_LENGTH,
+                    point.y - math.floor(point.y / CELL_LENGTH) * CELL_LENGTH,
+                    CELL_LENGTH - radius,
+                )
             )
             lcoord = gid_to_lcoord(cell_id)
             if lcoord is not None:
                 LandCell.add_outside_cell(cell_array, *lcoord)
                 LandCell.check_add_cell_boundary(
-                    cell_array, in_cell, lcoord[0], lcoord[1], CELL_LENGTH - sphere.radius, sphere.radius
+                    cell_array, (in_x, in_y), lcoord[0], lcoord[1], max_rad, radius
                 )
 
     @staticmethod

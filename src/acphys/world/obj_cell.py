@@ -46,6 +46,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
+from acphys.geometry.bbox import position_localtoglobal
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id, get_block_offset
 from acphys.math.position import Position
@@ -559,11 +560,13 @@ class ObjCell:
     def find_cell_list_for_sphere(
         p: Position, sphere: Sphere, cell_array: CellArray, path: SpherePath | None = None
     ) -> None:
-        """``find_cell_list`` for one sphere given in ``p``'s local frame.
+        """``find_cell_list`` for one sphere given in ``p``'s local frame, placed by
+        ``Position::localtoglobal`` (acclient.c:347329; its rows sum the y term first, unlike
+        ``Frame.localtoglobal``).
 
         Retail: CObjCell::find_cell_list @ 0x0052B990 (acclient.c:347321)
         """
-        global_sphere = Sphere.owning(p.frame.localtoglobal(sphere.center), sphere.radius)
+        global_sphere = Sphere.owning(position_localtoglobal(p, p, sphere.center), sphere.radius)
         ObjCell.find_cell_list(p, [global_sphere], cell_array, path)
 
     @staticmethod
@@ -571,12 +574,12 @@ class ObjCell:
         p: Position, cylspheres: Sequence[CylSphere], cell_array: CellArray, path: SpherePath | None = None
     ) -> None:
         """``find_cell_list`` for at most the first 10 cylspheres, each as a sphere of its
-        radius centred on its low point (placed by ``p``).
+        radius centred on its low point, placed by ``Position::localtoglobal`` (acclient.c:347366).
 
         Retail: CObjCell::find_cell_list @ 0x0052B9F0 (acclient.c:347336)
         """
         spheres = [
-            Sphere(p.frame.localtoglobal(cyl.low_pt), cyl.radius)
+            Sphere.owning(position_localtoglobal(p, p, cyl.low_pt), cyl.radius)
             for cyl in cylspheres[:MAX_CYLSPHERE_CELL_LIST]
         ]
         ObjCell.find_cell_list(p, spheres, cell_array, path)

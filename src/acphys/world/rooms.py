@@ -18,6 +18,11 @@ structure is in that frame:
 A doorway is a rectangle ``(lo, hi)`` flat on one axis, lying on a face of one room (a door to
 the outside) or on the shared face of two rooms (adjoining rooms share the wall plane).
 
+Everything built here stands for DAT data, so every stored number is a float32: the corners
+and box coordinates are :class:`~acphys.math.vector.Vector3` values (narrowed), the face planes
+of axis-aligned boxes have unit axis normals and offsets equal to a float32 coordinate, and the
+BSP spheres' radii are narrowed.
+
 ``build_house`` also makes the building: a shell around the rooms' bounding box (which the rooms
 must fill), ``wall_thickness`` outside it on the four sides and the roof, facing out, with the
 outside doorways cut through; one ``BldPortal`` per outside doorway. The building's origin is the
@@ -38,6 +43,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.world.building import BldPortal, BuildingObj
 from acphys.world.env_cell import OUTSIDE_CELL_ID, CellPortal, CellStruct, EnvCell
 
@@ -155,7 +161,7 @@ def _bounding_sphere(polys: Sequence[Polygon]) -> Sphere:
     lo = Vector3(min(p.x for p in points), min(p.y for p in points), min(p.z for p in points))
     hi = Vector3(max(p.x for p in points), max(p.y for p in points), max(p.z for p in points))
     center = (lo + hi) * 0.5
-    return Sphere(center, max((p - center).length() for p in points))
+    return Sphere(center, f32(max((p - center).length() for p in points)))
 
 
 def _plane_chain_tree(walls: Sequence[tuple[Plane, list[Polygon]]], inside_positive: bool) -> BSPTree:

@@ -9,7 +9,8 @@ the region's 256-entry height table and its 16-bit terrain word carries the terr
 Height table: retail reads ``LandDefs::Land_Height_Table`` from the region record (DAT
 0x13000000). acphys ships no default: no public source with the 256 values could be found and
 checked, so every ``LandBlockStruct`` takes the table as input, validated as
-``LandDefs::set_height_table`` does (256 entries, each in [0, 800]).
+``LandDefs::set_height_table`` does (256 entries, each in [0, 800]) and kept as float32 (the
+table is ``float``; so are the vertices, ``ConstructVertices`` stores the heights in them).
 
 Float constants the decompilation names but does not print (``flt_844C88``, ``flt_844C8C``,
 ``flt_844AF0``) are read from their use: 192.0 (block length, divided by the 8 polygons a side
@@ -110,22 +111,28 @@ def sw_to_ne_cut(x: int, y: int) -> bool:
 
 
 def set_height_table(table: Iterable[float]) -> tuple[float, ...]:
-    """Check a region height table and return it as a tuple.
+    """Check a region height table and return it as a tuple of float32 heights.
 
-    Retail copies entries while each is ``>= 0`` and ``<= 800`` (so NaN stops it) and returns 0
-    on the first bad one, leaving the table half-replaced; acphys raises ``ValueError`` instead.
+    The table is retail's ``float[256]`` read from the region record, so each entry is narrowed
+    to float32 before it is checked and kept. Retail copies entries while each is ``>= 0`` and
+    ``<= 800`` (so NaN stops it) and returns 0 on the first bad one, leaving the table
+    half-replaced; acphys raises ``ValueError`` instead.
 
     Retail: LandDefs::set_height_table @ 0x005A99E0 (acclient.c:467321)
     """
     values = tuple(table)
     if len(values) != HEIGHT_TABLE_SIZE:
         raise ValueError(f"height table needs {HEIGHT_TABLE_SIZE} entries, got {len(values)}")
+    heights = []
     for i, value in enumerate(values):
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ValueError(f"height table entry {i} is not a number: {value!r}")
-        if not (0.0 <= value <= MAX_LAND_HEIGHT):
+        # an int is exact (and one beyond the float range fails the test as it is)
+        height = f32(value) if isinstance(value, float) else value
+        if not (0.0 <= height <= MAX_LAND_HEIGHT):
             raise ValueError(f"height table entry {i} = {value!r} is outside [0, {MAX_LAND_HEIGHT}]")
-    return tuple(float(v) for v in values)
+        heights.append(float(height))  # an int in [0, 800] is a float32
+    return tuple(heights)
 
 
 def _check_words(name: str, values: Iterable[int], limit: int) -> tuple[int, ...]:

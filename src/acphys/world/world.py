@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 from acphys.math.cell_id import FIRST_ENV_CELL, inbound_valid_cellid, is_outdoor
 from acphys.math.vector import Vector3
+from acphys.precision import f32
 from acphys.world.land_cell import LandCell
 from acphys.world.landblock import LandBlock, Landscape
 from acphys.world.obj_cell import ObjCell
@@ -36,11 +37,12 @@ FIRST_OBJECT_ID = 0x80000001
 def flat_landblock(landblock: int, height: float) -> LandBlock:
     """Landblock ``0xXXYY`` of flat, dry ground at ``height`` metres (in [0, 800], as retail heights are).
 
-    Every height byte is 0 and the height table holds ``height`` throughout.
+    Every height byte is 0 and the height table holds ``height`` throughout, narrowed to float32
+    (the table is ``float``, see :func:`~acphys.world.terrain.set_height_table`).
     """
     if not 0 <= landblock <= 0xFFFF:
         raise ValueError(f"landblock must be 0xXXYY, got 0x{landblock:X}")
-    if not (math.isfinite(height) and 0.0 <= height <= MAX_LAND_HEIGHT):
+    if not (math.isfinite(height) and 0.0 <= f32(height) <= MAX_LAND_HEIGHT):
         raise ValueError(f"ground height must be in [0, {MAX_LAND_HEIGHT:g}] m, got {height}")
     zeros = [0] * NUM_VERTICES
     return LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, zeros, zeros, [height] * HEIGHT_TABLE_SIZE))

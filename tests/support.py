@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+
+from acphys.constants import GRAVITY
 from acphys.flags import PhysicsState, TransientState
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import outdoor_cell_id
@@ -11,6 +14,7 @@ from acphys.math.vector import Vector3
 from acphys.motion.motion_table import MotionTable
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.setup import Setup, human_setup
 from acphys.world.world import World
 
@@ -44,3 +48,36 @@ def place(
     if motion_table is not None:
         body.set_motion_table(motion_table)
     return body
+
+
+def ulp32(x: float) -> float:
+    """The spacing of float32 values at ``x`` (acphys stores positions as float32)."""
+    return 2.0 ** (math.frexp(abs(x))[1] - 24) if x else 2.0**-149
+
+
+def walk_tolerance(where: float, steps: int) -> float:
+    """How far ``steps`` float32 position stores near ``where`` can drift from the double sum:
+    half a float32 spacing each, plus one for the start. Far below any step a test counts."""
+    return (steps / 2 + 1) * ulp32(where)
+
+
+#: A unit quantity (a normal, a quaternion component) computed through float32 stores: good to a
+#: few float32 ulps of 1.
+UNIT_TOL = 2.0**-21
+
+
+def fall(z0: float, dt: float, n: int, v0: float = 0.0) -> tuple[float, float]:
+    """Origin z and velocity z after ``n`` free-fall steps, as retail's float stores make them.
+
+    CPhysicsObj::UpdatePhysicsInternal (acclient.c:317700): only with v² > 0 does the origin move
+    (so step 1 from rest does not), by ``w.z = result.z + w.z·dt·dt`` where ``result.z = dt·v.z``
+    and ``w.z = a.z·0.5`` are float locals, then ``origin.z = w.z + origin.z`` (a float field);
+    then ``v.z = result.z + v.z`` with ``result.z = dt·a.z`` spilled (acclient.c:317760-317775).
+    In double arithmetic step k would move (k-1)·g·dt² + g·dt²/2 and n steps g·dt²·(n² - 1)/2.
+    """
+    z, v = f32(z0), v0
+    for _ in range(n):
+        if v * v > 0.0:
+            z = f32(f32(f32(dt * v) + f32(GRAVITY * 0.5) * dt * dt) + z)
+        v = f32(f32(dt * GRAVITY) + v)
+    return z, v

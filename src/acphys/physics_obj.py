@@ -268,8 +268,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         """One physics step: candidate frame, sweep, commit, then the managers.
 
         An inactive body only ticks its particles and scripts. ``cached_velocity`` is the swept
-        offset times the reciprocal of the quantum (see :func:`_over_quantum`), stored as floats
-        (acclient.c:322816-322828).
+        offset over the quantum, divided as retail's ``Vector3::operator/`` does (by the
+        reciprocal; see :meth:`Vector3.__truediv__`), acclient.c:322816-322828.
 
         Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
         """
@@ -290,9 +290,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
                     self._align_heading(new_pos.frame)
                     transit = self.transition(self.position, new_pos)
                     if transit is not None:
-                        self.cached_velocity = _over_quantum(
-                            self.position.get_offset(transit.sphere_path.curr_pos), quantum
-                        )
+                        offset = self.position.get_offset(transit.sphere_path.curr_pos)
+                        self.cached_velocity = offset / quantum
                         self.set_position_internal(transit)
                     else:
                         self._keep_origin(new_pos.frame)
@@ -839,18 +838,6 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         return any(
             shadow.cell is not None and shadow.cell.check_collisions(self) for shadow in self.shadow_objects
         )
-
-
-def _over_quantum(offset: Vector3, quantum: float) -> Vector3:
-    """``offset / quantum`` as retail's ``Vector3::operator/`` divides: by multiplying by the
-    reciprocal, which is also stored into the ``float`` parameter's slot. The x component uses
-    the unrounded reciprocal, y and z the float32 one (acclient.c:146876-146883).
-    """
-    inv = 1.0 / quantum
-    inv32 = f32(inv)
-    v = _new(Vector3)
-    v.x, v.y, v.z = unpack3(pack3(inv * offset.x, inv32 * offset.y, inv32 * offset.z))
-    return v
 
 
 def _require_finite(what: str, v: Vector3) -> None:

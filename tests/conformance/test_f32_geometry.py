@@ -25,7 +25,7 @@ import math
 from acphys.constants import EPSILON, FLOOR_Z
 from acphys.flags import ObjectInfoState as OIS
 from acphys.flags import TransitionState as TS
-from acphys.geometry.bbox import BBox, position_localtoglobal
+from acphys.geometry.bbox import BBox
 from acphys.geometry.bsp import (
     CELL_OUTSIDE,
     CELL_PARTIALLY_INSIDE,
@@ -364,7 +364,7 @@ class TestBspStores:
         v = Vector3(1.463, 0.709, 0.5)
         m, o = frm.frame.m, frm.frame.origin
         gx = m[3] * v.y + m[0] * v.x + m[6] * v.z + o.x
-        got = position_localtoglobal(to, frm, v)
+        got = to.localtoglobal(frm, v)
         assert got.x == f32(192.0 + f32(gx)) == 196.0155029296875
         assert got.x != f32(192.0 + gx)
         # BBox::LocalToGlobal takes every corner through it (acclient.c:476912): a point box.

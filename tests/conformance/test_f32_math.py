@@ -166,3 +166,14 @@ def test_heading_uses_float_angles() -> None:
     b.set_heading(f32(123.456))
     assert a.rotation == b.rotation
     assert all(is_f32(q) for q in a.rotation)
+
+
+def test_division_multiplies_by_the_stored_reciprocal() -> None:
+    # Vector3::operator/ @ 0x00455DE0 (acclient.c:146865): v4 = 1.0 / rhs in st7, stored into the
+    # float parameter's slot (_rhsa); x is scaled by v4, y and z by the stored float.
+    v = Vector3(0.1, 0.1, 0.1)  # a walk frame's 0.1 m over a 30 Hz quantum
+    q = f32(1.0 / 30.0)
+    inv = 1.0 / q
+    got = v / q
+    assert (got.x, got.y, got.z) == (f32(inv * v.x), f32(f32(inv) * v.y), f32(f32(inv) * v.z))
+    assert got.x != got.y  # the same component, scaled by the two reciprocals

@@ -8,6 +8,8 @@ import math
 import acphys
 from acphys.flags import PhysicsState, TransientState
 from acphys.math.vector import Vector3
+from acphys.precision import f32
+from support import walk_tolerance
 
 STEP = 3.12 / 30.0  # walk root motion per 30-Hz step (CMotionInterp::get_state_velocity, acclient.c:343538)
 EDGE_Y = 98.0
@@ -34,18 +36,18 @@ def test_without_edge_slide_the_walker_walks_off_and_falls(tmp_path):
     # acclient.c:360006): centre at most sqrt(0.48^2 - 0.08^2) = 0.473 past the edge.
     # 23 steps (0.392 past) stand; the 24th (0.496 past) finds nothing and CTransition::edge_slide
     # (acclient.c:312684) accepts it without contact.
-    assert abs(before["origin"][1] - (96.0 + 23 * STEP)) < 1e-6
-    assert abs(before["origin"][2] - (TOP + LIFT)) < 1e-9
-    assert abs(left["origin"][1] - (96.0 + 24 * STEP)) < 1e-6
-    assert abs(left["origin"][2] - (TOP + LIFT)) < 1e-9
+    assert abs(before["origin"][1] - (96.0 + 23 * STEP)) < walk_tolerance(96.0, 23)
+    assert before["origin"][2] == f32(TOP + LIFT)
+    assert abs(left["origin"][1] - (96.0 + 24 * STEP)) < walk_tolerance(96.0, 24)
+    assert left["origin"][2] == f32(TOP + LIFT)
     assert "leave_ground" in left["events"]
     # Leaving the ground turns the walk into velocity (CMotionInterp::LeaveGround, acclient.c:344456).
     assert left["velocity"][0] == 0.0
-    assert abs(left["velocity"][1] - 3.12) < 1e-6
+    assert abs(left["velocity"][1] - 3.12) < 1e-6  # the float32 3.12 of the walk
     # It lands on the ground below, clear of the platform.
     body = sim.body("faller")
     origin = body.position.frame.origin
-    assert abs(origin.z - (50.0 + LIFT)) < 1e-9
+    assert origin.z == f32(50.0 + LIFT)
     assert origin.y > EDGE_Y + 0.48
     assert body.transient_state & TransientState.CONTACT
     assert body.transient_state & TransientState.ON_WALKABLE
@@ -61,8 +63,8 @@ def test_with_edge_slide_the_walker_stops_at_the_edge(tmp_path):
     # CPolygon::check_small_walkable (acclient.c:360311), also r/2. 21 steps (0.184 past the edge)
     # pass; the 22nd (0.288) is refused, SPHEREPATH::precipice_slide (acclient.c:313979) slides
     # head-on to COLLIDED and CTransition::validate_transition (acclient.c:312193) rolls it back.
-    assert abs(origin.y - (96.0 + 21 * STEP)) < 1e-6
-    assert abs(origin.z - (TOP + LIFT)) < 1e-9
+    assert abs(origin.y - (96.0 + 21 * STEP)) < walk_tolerance(96.0, 21)
+    assert origin.z == f32(TOP + LIFT)
     assert body.transient_state & TransientState.CONTACT
     assert body.transient_state & TransientState.ON_WALKABLE
     assert all("contact" in record["transient"] for record in records)
@@ -86,12 +88,12 @@ def test_cliff_slide_stops_a_walker_at_the_crease(tmp_path):
     # CTransition::cliff_slide, which takes the whole eastward step back (acclient.c:312065).
     stuck = _stuck_index(records)
     assert stuck == 14
-    assert abs(records[stuck]["origin"][0] - (142.5 + 14 * STEP)) < 1e-6
+    assert abs(records[stuck]["origin"][0] - (142.5 + 14 * STEP)) < walk_tolerance(142.5, 14)
     assert all(record["origin"][0] < CREASE_X for record in records)
     origin = body.position.frame.origin
-    assert abs(origin.x - (142.5 + 14 * STEP)) < 1e-6
-    assert abs(origin.y - 96.0) < 1e-9
-    assert abs(origin.z - (50.0 + LIFT)) < 1e-9
+    assert abs(origin.x - (142.5 + 14 * STEP)) < walk_tolerance(142.5, 14)
+    assert origin.y == 96.0
+    assert origin.z == f32(50.0 + LIFT)
     # The slid step ends where it began: CTransition::validate_transition counts a stationary frame
     # (acclient.c:312312) and CPhysicsObj::handle_all_collisions sets STATIONARY_FALL; cliff_slide's
     # collision normal (-x, acclient.c:312065-312071) becomes the sliding normal (acclient.c:312271).
@@ -112,11 +114,11 @@ def test_cliff_slide_turns_an_oblique_walker_along_the_crease(tmp_path):
     edge_x = 142.5 + 16 * dx
     assert edge_x < CREASE_X < edge_x + dx
     for index, record in enumerate(records[16:40], start=16):
-        assert abs(record["origin"][0] - edge_x) < 1e-6
-        assert abs(record["origin"][1] - (90.0 + (index + 1) * dy)) < 1e-6
-        assert abs(record["origin"][2] - (50.0 + LIFT)) < 1e-9
+        assert abs(record["origin"][0] - edge_x) < walk_tolerance(edge_x, 16)
+        assert abs(record["origin"][1] - (90.0 + (index + 1) * dy)) < walk_tolerance(90.0, index + 1)
+        assert record["origin"][2] == f32(50.0 + LIFT)
         assert "contact" in record["transient"]
-    assert abs(records[15]["origin"][0] - edge_x) < 1e-6
+    assert abs(records[15]["origin"][0] - edge_x) < walk_tolerance(edge_x, 16)
     body = sim.body("slider")
     assert body.transient_state & TransientState.ON_WALKABLE
     assert body.position.frame.origin.y > 90.0 + 40 * dy

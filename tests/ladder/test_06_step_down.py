@@ -14,7 +14,9 @@ from typing import Any
 import pytest
 
 import acphys
+from acphys.precision import f32
 from acphys.trace import read_trace
+from support import UNIT_TOL, ulp32
 
 STAIR_TOPS = [1.2, 0.9, 0.6, 0.3, 0.0]  # box tops above the 50-m ground
 OFFSET = 0.005  # sphere 0 (r 0.48 at z 0.475): its low point is 0.005 below the origin
@@ -34,18 +36,19 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[dict[str, 
 
 def test_stepper_walks_down_the_stairs_in_contact(steps: dict[str, list[dict[str, Any]]]) -> None:
     stepper = steps["stair-stepper"]
-    heights = [50.0 + top + OFFSET for top in STAIR_TOPS]
+    heights = [f32(50.0 + top + OFFSET) for top in STAIR_TOPS]  # as float32 positions hold them
     zs = [record["origin"][2] for record in stepper]
     for record in stepper:
         # Never airborne: step-down (CTransition::step_down, acclient.c:312628, from transitional_insert,
         # acclient.c:312833) finds each lower tread, the new contact plane (acclient.c:322503).
         assert {"contact", "on_walkable"} <= set(record["transient"])
-        assert record["contact_normal"] == pytest.approx([0.0, 0.0, 1.0], abs=1e-9)
+        assert record["contact_normal"] == [0.0, 0.0, 1.0]
         assert "leave_ground" not in record["events"]
-        # Standing on a tread: the sphere's low point exactly on its top face.
-        assert min(abs(record["origin"][2] - h) for h in heights) < 1e-9
+        # Standing on a tread: the sphere's low point exactly on its top face (to float32).
+        assert min(abs(record["origin"][2] - h) for h in heights) <= ulp32(51.0)
     drops = [a - b for a, b in pairwise(zs) if a != b]
-    assert drops == pytest.approx([0.3, 0.3, 0.3, 0.3], abs=1e-9)  # one riser at a time, all four
+    # one riser at a time, all four (each drop a difference of float32 heights near 51 m)
+    assert drops == pytest.approx([0.3, 0.3, 0.3, 0.3], abs=2 * ulp32(51.0))
     assert stepper[-1]["origin"][1] > 94.5 + 0.48  # past the foot of the stairs
 
 
@@ -56,7 +59,7 @@ def test_shuffler_falls_off_the_stairs(steps: dict[str, list[dict[str, Any]]]) -
     first = faller.index(airborne[0])
     # It walked off the platform (y 90..93) and left walkable ground there.
     assert "leave_ground" in airborne[0]["events"]
-    assert faller[first - 1]["origin"][2] == pytest.approx(51.205, abs=1e-9)
+    assert faller[first - 1]["origin"][2] == pytest.approx(51.205, abs=ulp32(51.205))
     assert 93.0 < airborne[0]["origin"][1] < 93.0 + 0.48
 
 
@@ -72,8 +75,9 @@ def test_stepper_walks_down_the_slope_in_contact(steps: dict[str, list[dict[str,
         x, _, z = record["origin"]
         # Low point on the terrain plane (OBJECTINFO::validate_walkable, acclient.c:314160), the slope's
         # triangle as the contact plane.
-        assert z == pytest.approx(50.0 - SLOPE * (x - 120.0) + OFFSET, abs=1e-9)
-        assert record["contact_normal"] == pytest.approx([SLOPE / k, 0.0, 1.0 / k], abs=1e-9)
+        # To the float32 spacing of the plane's d and the origin, at ~50 m.
+        assert z == pytest.approx(50.0 - SLOPE * (x - 120.0) + OFFSET, abs=2 * ulp32(50.0))
+        assert record["contact_normal"] == pytest.approx([SLOPE / k, 0.0, 1.0 / k], abs=UNIT_TOL)
 
 
 def test_shuffler_hops_down_the_slope(steps: dict[str, list[dict[str, Any]]]) -> None:

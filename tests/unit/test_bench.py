@@ -9,6 +9,7 @@ import pytest
 
 from acphys.bench import LANDBLOCK_RATE, WORKLOADS, run_suite
 from acphys.cli import main
+from support import walk_tolerance
 
 
 def test_the_suite_reports_every_workload_against_the_baseline() -> None:
@@ -41,7 +42,8 @@ def test_the_crowd_walks_into_itself() -> None:
     start = {body.name: body.position.frame.origin.copy() for body in sim.bodies}
     sim.run()
     walked = [(body.position.frame.origin - start[body.name]).length() for body in sim.bodies]
-    assert max(walked) == pytest.approx(6.24, abs=1e-6)
+    # (60 float32 position stores near 85 m: each 0.104-m step rounds the same way there)
+    assert max(walked) == pytest.approx(6.24, abs=walk_tolerance(86.0, 60))
     assert sum(distance < 5.7 for distance in walked) >= 4
 
 

@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 import acphys
+from acphys.precision import f32
 
 HAND = (0.7, 0.3, 1.1)
 
@@ -36,9 +37,10 @@ def test_while_held_the_lantern_is_at_the_hand_and_takes_no_steps() -> None:
         sim.run(until=until)
         porter, lantern = sim.body("porter"), sim.body("lantern")
         assert lantern.parent is porter
-        # Heading 0 is the identity rotation, so the hand is at the porter's origin + HAND.
-        expected = tuple(a + b for a, b in zip(porter.position.frame.origin, HAND, strict=True))
-        assert tuple(lantern.position.frame.origin) == pytest.approx(expected, abs=1e-12)
+        # Heading 0 is the identity rotation, so the hand is at the porter's origin + HAND, each
+        # sum stored as a float (Frame::combine, acclient.c:319448).
+        expected = tuple(f32(a + f32(b)) for a, b in zip(porter.position.frame.origin, HAND, strict=True))
+        assert tuple(lantern.position.frame.origin) == expected
         assert lantern.position.objcell_id == porter.position.objcell_id
     assert sim.body("porter").position.frame.origin.y > 80.0 + 5.0  # it walked on, carrying it
     assert steps == []
@@ -52,8 +54,8 @@ def test_the_trace_shows_the_hold_and_the_release(records) -> None:
     assert {"set_parent:porter", "unset_parent"} <= set(lantern[0]["events"])
     # Let go where the hand was at the last porter step before 2 s.
     released = max((r for r in porter if r["t"] <= 2.0), key=lambda r: r["t"])
-    expected = [a + b for a, b in zip(released["origin"], HAND, strict=True)]
-    assert lantern[0]["origin"] == pytest.approx(expected, abs=1e-9)
+    expected = [f32(a + f32(b)) for a, b in zip(released["origin"], HAND, strict=True)]
+    assert lantern[0]["origin"] == expected
     # unset_parent cleared the transient states; nothing wakes it before the toss.
     assert lantern[0]["transient"] == []
 

@@ -1,57 +1,11 @@
-"""``BBox``: an axis-aligned box, and how retail moves points, vectors and boxes between frames.
-
-:func:`position_localtoglobal` and :func:`position_localtoglobalvec` are retail's ``Position``
-flavours of the frame transforms: they sum their terms in another order than ``Frame``'s and
-store their results (and the global point before the landblock shift) as ``float``.
-"""
+"""``BBox``: an axis-aligned box, and how retail moves boxes between frames."""
 
 from __future__ import annotations
 
-from acphys.math.cell_id import get_block_offset
 from acphys.math.position import Position
 from acphys.math.vector import Vector3
-from acphys.precision import pack3, unpack3
 
 _new = object.__new__
-
-
-def position_localtoglobal(to_pos: Position, from_pos: Position, v: Vector3) -> Vector3:
-    """The point ``v`` local to ``from_pos``'s frame, in ``to_pos``'s landblock.
-
-    Each row sums its y term first; the global point is spilled to ``float`` before the block
-    offset is added (acclient.c:147151-147160).
-
-    Retail: Position::localtoglobal @ 0x00456180 (acclient.c:147140)
-    """
-    m, o = from_pos.frame.m, from_pos.frame.origin
-    gx, gy, gz = unpack3(
-        pack3(
-            m[3] * v.y + m[0] * v.x + m[6] * v.z + o.x,
-            m[4] * v.y + m[1] * v.x + m[7] * v.z + o.y,
-            m[5] * v.y + m[2] * v.x + m[8] * v.z + o.z,
-        )
-    )
-    block = get_block_offset(to_pos.objcell_id, from_pos.objcell_id)
-    r = _new(Vector3)
-    r.x, r.y, r.z = unpack3(pack3(block.x + gx, block.y + gy, block.z + gz))
-    return r
-
-
-def position_localtoglobalvec(pos: Position, v: Vector3) -> Vector3:
-    """The vector ``v`` rotated by ``pos``'s frame, each row summing its y term first.
-
-    Retail: Position::localtoglobalvec @ 0x00456220 (acclient.c:147164)
-    """
-    m = pos.frame.m
-    r = _new(Vector3)
-    r.x, r.y, r.z = unpack3(
-        pack3(
-            m[3] * v.y + m[0] * v.x + m[6] * v.z,
-            m[4] * v.y + m[1] * v.x + m[7] * v.z,
-            m[5] * v.y + m[2] * v.x + m[8] * v.z,
-        )
-    )
-    return r
 
 
 class BBox:
@@ -109,11 +63,11 @@ class BBox:
     def local_to_global(cls, from_box: BBox, from_pos: Position, to_pos: Position) -> BBox:
         """The axis-aligned box around ``from_box``'s corners taken from ``from_pos``'s frame into
         ``to_pos``'s landblock (``to_pos``'s frame is not used, only its cell id), each corner by
-        :func:`position_localtoglobal`.
+        :meth:`Position.localtoglobal <acphys.math.position.Position.localtoglobal>`.
 
         Retail: BBox::LocalToGlobal @ 0x005B2120 (acclient.c:476912)
         """
-        return cls.around([position_localtoglobal(to_pos, from_pos, c) for c in from_box.corners()])
+        return cls.around([to_pos.localtoglobal(from_pos, c) for c in from_box.corners()])
 
     @classmethod
     def local_to_local(cls, from_box: BBox, from_pos: Position, to_pos: Position) -> BBox:

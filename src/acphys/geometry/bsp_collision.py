@@ -7,8 +7,8 @@ and ``localspace_z`` describe the moving spheres in tree space (lengths divided 
 Offsets found there are rotated back with ``localspace_pos`` and, where retail does, multiplied
 by ``scale`` before they move ``check_pos``. Retail rotates with three different row orders: the
 inlined ``Frame::localtoglobalvec`` (``step_sphere_up``, ``slide_sphere``),
-``Position::localtoglobalvec`` (:func:`~acphys.geometry.bbox.position_localtoglobalvec`) and a
-few inlined sums of their own; each routine here uses the one retail does.
+``Position::localtoglobalvec`` (:meth:`acphys.math.position.Position.localtoglobalvec`) and
+a few inlined sums of their own; each routine here uses the one retail does.
 
 ``find_collisions`` keeps retail's query kinds apart (acclient.c:361335-361498): placement or
 ethereal obstruction, ``check_walkable``, ``step_down``, ``collide`` (land on a walkable face),
@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
-from acphys.geometry.bbox import position_localtoglobal, position_localtoglobalvec
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
@@ -69,7 +68,7 @@ def plane_localtoglobal(to: Position, frm: Position, local_plane: Plane) -> Plan
         m[7] * n.z + m[4] * n.y + m[1] * n.x,
         m[8] * n.z + m[5] * n.y + m[2] * n.x,
     )
-    p = position_localtoglobal(to, frm, point)
+    p = to.localtoglobal(frm, point)
     return Plane(normal, -(normal.z * p.z + normal.y * p.y + normal.x * p.x))
 
 
@@ -83,7 +82,7 @@ def _along(origin: Vector3, movement: Vector3, t: float) -> Vector3:
 def _scaled_global(path: SpherePath, offset: Vector3, scale: float) -> Vector3:
     """``offset`` (a ``Vector3``) rotated by ``Position::localtoglobalvec`` and multiplied by the
     ``float`` ``scale``, component by component (acclient.c:361383-361389, 361165-361171)."""
-    return position_localtoglobalvec(path.localspace_pos, offset) * scale
+    return path.localspace_pos.localtoglobalvec(offset) * scale
 
 
 class BSPTreeCollisions:
@@ -159,9 +158,9 @@ class BSPTreeCollisions:
                     assert found1.polygon is not None
                     return self.slide_sphere(path, collisions, found1.polygon.plane.N)
                 if found1.polygon is not None:
-                    path.set_neg_poly_hit(False, position_localtoglobalvec(lpos, found1.polygon.plane.N))
+                    path.set_neg_poly_hit(False, lpos.localtoglobalvec(found1.polygon.plane.N))
                 elif found0.polygon is not None:
-                    path.set_neg_poly_hit(True, position_localtoglobalvec(lpos, found0.polygon.plane.N))
+                    path.set_neg_poly_hit(True, lpos.localtoglobalvec(found0.polygon.plane.N))
             return TS.OK
         found0 = root.sphere_intersects_poly(sphere0, movement)
         if state & ObjectInfoState.PATH_CLIPPED:
@@ -172,13 +171,13 @@ class BSPTreeCollisions:
                 obj, path, collisions, sphere0, curr0, found0.polygon, found0.contact_pt, scale
             )
         if found0.polygon is not None:
-            path.set_collide(position_localtoglobalvec(lpos, found0.polygon.plane.N))
+            path.set_collide(lpos.localtoglobalvec(found0.polygon.plane.N))
             path.walkable_allowance = LANDING_Z
             return TS.ADJUSTED
         if sphere1 is not None:
             found1 = root.sphere_intersects_poly(sphere1, movement, None, found0.contact_pt)
             if found1.polygon is not None:
-                collisions.set_collision_normal(position_localtoglobalvec(lpos, found1.polygon.plane.N))
+                collisions.set_collision_normal(lpos.localtoglobalvec(found1.polygon.plane.N))
                 return TS.COLLIDED
         return TS.OK
 
@@ -236,7 +235,7 @@ class BSPTreeCollisions:
                 if tries == 0:
                     return TS.OK
                 offset = valid_pos.center - path.localspace_sphere[0].center
-                path.add_offset_to_check_pos(position_localtoglobalvec(path.localspace_pos, offset))
+                path.add_offset_to_check_pos(path.localspace_pos.localtoglobalvec(offset))
                 return TS.ADJUSTED
             else:
                 struck, other = valid_pos2, valid_pos
@@ -340,7 +339,7 @@ class BSPTreeCollisions:
         valid_pos = check_pos.copy()
         if not self.adjust_to_plane(valid_pos, curr_pos.copy(), hit_poly, contact_pt):
             return TS.COLLIDED
-        collisions.set_collision_normal(position_localtoglobalvec(path.localspace_pos, hit_poly.plane.N))
+        collisions.set_collision_normal(path.localspace_pos.localtoglobalvec(hit_poly.plane.N))
         path.add_offset_to_check_pos(_scaled_global(path, valid_pos.center - check_pos.center, scale))
         return TS.ADJUSTED
 

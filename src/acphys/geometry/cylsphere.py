@@ -19,7 +19,6 @@ from typing import TYPE_CHECKING
 
 from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
-from acphys.geometry.bbox import position_localtoglobal, position_localtoglobalvec
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere, _step_since_curr
 from acphys.math.vector import Vector3
@@ -245,7 +244,7 @@ class CylSphere:
         _, normal = self.normal_of_collision(path, check_pos, disp, radsum, 0)
         if normal.normalize_check_small():
             return TS.COLLIDED
-        if transition.step_up(position_localtoglobalvec(path.localspace_pos, normal)):
+        if transition.step_up(path.localspace_pos.localtoglobalvec(normal)):
             return TS.OK
         return path.step_up_slide(obj, collisions)
 
@@ -320,13 +319,13 @@ class CylSphere:
 
         First caches the path's spheres in ``p``'s frame at scale 1.0 (the ``localspace_pos``
         that :meth:`step_sphere_up` rotates by). ``low_pt`` goes through ``Position::localtoglobal``
-        (:func:`~acphys.geometry.bbox.position_localtoglobal`).
+        (:meth:`Position.localtoglobal <acphys.math.position.Position.localtoglobal>`).
 
         Retail: CCylSphere::intersects_sphere @ 0x0053B8F0 (acclient.c:362243)
         """
         path = transition.sphere_path
         path.cache_localspace_sphere(p, 1.0)
-        low_pt = position_localtoglobal(path.check_pos, p, self.low_pt * scale)
+        low_pt = path.check_pos.localtoglobal(p, self.low_pt * scale)
         return CylSphere(low_pt, scale * self.radius, scale * self.height).intersects_sphere(transition)
 
     def intersects_sphere(self, transition: SphereTransition) -> TransitionState:

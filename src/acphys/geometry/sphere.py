@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, Protocol
 
 from acphys.constants import EPSILON, LANDING_Z
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
-from acphys.geometry.bbox import position_localtoglobal
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
 from acphys.precision import f32, pack3, unpack3
@@ -169,11 +168,11 @@ class Sphere:
         self, p: Position, scale: float, transition: SphereTransition, is_creature: bool
     ) -> TransitionState:
         """``intersects_sphere`` for this sphere local to ``p`` at ``scale``, in ``check_pos``'s block
-        (``Position::localtoglobal``, :func:`~acphys.geometry.bbox.position_localtoglobal`).
+        (``Position::localtoglobal``, :meth:`acphys.math.position.Position.localtoglobal`).
 
         Retail: CSphere::intersects_sphere @ 0x00537FD0 (acclient.c:359389)
         """
-        center = position_localtoglobal(transition.sphere_path.check_pos, p, self.center * scale)
+        center = transition.sphere_path.check_pos.localtoglobal(p, self.center * scale)
         return Sphere.owning(center, f32(scale * self.radius)).intersects_sphere(transition, is_creature)
 
     def intersects_sphere(self, transition: SphereTransition, is_creature: bool) -> TransitionState:

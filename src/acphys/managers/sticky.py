@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING
 from acphys.constants import EPSILON
 from acphys.managers.target import TargetStatus
 from acphys.math.position import Position
-from acphys.math.vector import Vector3
 from acphys.motion.move_to import position_heading
 from acphys.precision import f32, pack3, unpack3
 
@@ -45,22 +44,6 @@ def cylinder_distance_no_z(r1: float, p1: Position, r2: float, p2: Position) -> 
     Retail: Position::cylinder_distance_no_z @ 0x005A98B0 (acclient.c:467268)
     """
     return p1.get_offset(p2).length() - (f32(r1) + f32(r2))
-
-
-def position_globaltolocalvec(p: Position, v: Vector3) -> Vector3:
-    """Rotate a global vector into ``p``'s frame, each row summed from its y term.
-
-    ``Position``'s own copy of ``Frame::globaltolocalvec``, which sums the z term first: the
-    two round differently.
-
-    Retail: Position::globaltolocalvec @ 0x0050C420 (acclient.c:313494)
-    """
-    m = p.frame.m
-    return Vector3(
-        m[1] * v.y + m[0] * v.x + m[2] * v.z,
-        m[4] * v.y + m[3] * v.x + m[5] * v.z,
-        m[7] * v.y + m[6] * v.x + m[8] * v.z,
-    )
 
 
 class StickyManager:
@@ -163,7 +146,7 @@ class StickyManager:
         here = obj.position
         target = obj.world.get_object(self.target_id)
         there = target.position if target is not None else self.target_position
-        direction = position_globaltolocalvec(here, here.get_offset(there))
+        direction = here.globaltolocalvec(here.get_offset(there))
         direction.z = 0.0
         gap = f32(cylinder_distance_no_z(obj.get_radius(), here, self.target_radius, there) - STICKY_RADIUS)
         if direction.normalize_check_small():

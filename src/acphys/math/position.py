@@ -65,15 +65,14 @@ class Position:
         r.x, r.y, r.z = unpack3(pack3(x - s.x, block.y + gy - s.y, z - s.z))
         return r
 
-    def localtolocal(self, other: Position, v: Vector3) -> Vector3:
-        """The point ``v`` local to ``other``'s frame, expressed in this position's frame (across blocks).
+    def localtoglobal(self, other: Position, v: Vector3) -> Vector3:
+        """The point ``v`` local to ``other``'s frame, in this position's landblock.
 
-        The global point (summing its y term first) and its move into this landblock are
-        ``float`` stores (acclient.c:143803-143813).
+        Each row sums its y term first, and the global point is stored as ``float`` before the
+        landblock offset is added (acclient.c:147151-147160).
 
-        Retail: Position::localtolocal @ 0x004527F0 (acclient.c:143794)
+        Retail: Position::localtoglobal @ 0x00456180 (acclient.c:147140)
         """
-        block = get_block_offset(self.objcell_id, other.objcell_id)
         m, o = other.frame.m, other.frame.origin
         gx, gy, gz = unpack3(
             pack3(
@@ -82,7 +81,53 @@ class Position:
                 m[5] * v.y + m[2] * v.x + m[8] * v.z + o.z,
             )
         )
-        return self.frame.globaltolocal(Vector3(block.x + gx, block.y + gy, block.z + gz))
+        block = get_block_offset(self.objcell_id, other.objcell_id)
+        r = _new(Vector3)
+        r.x, r.y, r.z = unpack3(pack3(block.x + gx, block.y + gy, block.z + gz))
+        return r
+
+    def localtoglobalvec(self, v: Vector3) -> Vector3:
+        """The vector ``v`` rotated by this frame, each row summing its y term first (``Frame``'s
+        own sums the z term first, and rounds differently).
+
+        Retail: Position::localtoglobalvec @ 0x00456220 (acclient.c:147164)
+        """
+        m = self.frame.m
+        r = _new(Vector3)
+        r.x, r.y, r.z = unpack3(
+            pack3(
+                m[3] * v.y + m[0] * v.x + m[6] * v.z,
+                m[4] * v.y + m[1] * v.x + m[7] * v.z,
+                m[5] * v.y + m[2] * v.x + m[8] * v.z,
+            )
+        )
+        return r
+
+    def globaltolocalvec(self, v: Vector3) -> Vector3:
+        """A global vector rotated into this frame, each row summing its y term first.
+
+        Retail: Position::globaltolocalvec @ 0x0050C420 (acclient.c:313494)
+        """
+        m = self.frame.m
+        r = _new(Vector3)
+        r.x, r.y, r.z = unpack3(
+            pack3(
+                m[1] * v.y + m[0] * v.x + m[2] * v.z,
+                m[4] * v.y + m[3] * v.x + m[5] * v.z,
+                m[7] * v.y + m[6] * v.x + m[8] * v.z,
+            )
+        )
+        return r
+
+    def localtolocal(self, other: Position, v: Vector3) -> Vector3:
+        """The point ``v`` local to ``other``'s frame, expressed in this position's frame (across blocks).
+
+        Retail inlines :meth:`localtoglobal` (the same sums and ``float`` stores,
+        acclient.c:143803-143813), then takes the point into this frame.
+
+        Retail: Position::localtolocal @ 0x004527F0 (acclient.c:143794)
+        """
+        return self.frame.globaltolocal(self.localtoglobal(other, v))
 
     def determine_quadrant(self, height: float, p: Position) -> int:
         """Where ``p``'s origin lies around this position: 0x8 left / 0x10 right, 0x20 front /

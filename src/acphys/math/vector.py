@@ -6,7 +6,7 @@ import math
 from collections.abc import Iterator
 
 from acphys.constants import EPSILON
-from acphys.precision import pack3, unpack3
+from acphys.precision import f32, pack3, unpack3
 
 #: ``object.__new__``: the operators below build their results with it and set the slots
 #: directly, skipping ``__init__``. Constructing vectors is the commonest thing a body step does.
@@ -66,7 +66,17 @@ class Vector3:
     __rmul__ = __mul__
 
     def __truediv__(self, scalar: float) -> Vector3:
-        return Vector3(self.x / scalar, self.y / scalar, self.z / scalar)
+        """Divide as retail does, by multiplying by the reciprocal: ``scalar`` is a ``float``
+        parameter, and the reciprocal is stored back into its slot, so x is scaled by the
+        double reciprocal and y and z by its float32 (acclient.c:146874-146881).
+
+        Retail: Vector3::operator/ @ 0x00455DE0 (acclient.c:146865)
+        """
+        inv = 1.0 / f32(scalar)
+        inv32 = f32(inv)
+        v = _new(Vector3)
+        v.x, v.y, v.z = unpack3(pack3(inv * self.x, inv32 * self.y, inv32 * self.z))
+        return v
 
     def __neg__(self) -> Vector3:
         v = _new(Vector3)

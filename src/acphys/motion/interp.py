@@ -404,8 +404,8 @@ class MotionInterp:
 
         When all three are (within EPSILON) zero, the body's current global
         velocity rotated into its local frame is used instead. The jump speed is a
-        ``float`` local; the rotated velocity is summed in retail's own order (rows of the
-        transposed matrix taken y, x, z) and stored once per component (acclient.c:343822-343840).
+        ``float`` local; the rotation is ``Position::globaltolocalvec`` inlined (its row sums,
+        stored once per component, acclient.c:343822-343840).
 
         Retail: CMotionInterp::get_leave_ground_velocity @ 0x005280C0 (acclient.c:343805)
         """
@@ -413,15 +413,7 @@ class MotionInterp:
         velocity.z = self.get_jump_v_z()  # a float32 already: the float local va
         if abs(velocity.x) < EPSILON and abs(velocity.y) < EPSILON and abs(velocity.z) < EPSILON:
             obj = self.physics_obj
-            m = obj.position.frame.m
-            g = obj.velocity
-            velocity.x, velocity.y, velocity.z = unpack3(
-                pack3(
-                    m[1] * g.y + m[0] * g.x + m[2] * g.z,
-                    m[4] * g.y + m[3] * g.x + m[5] * g.z,
-                    m[7] * g.y + m[6] * g.x + m[8] * g.z,
-                )
-            )
+            velocity = obj.position.globaltolocalvec(obj.velocity)
         return velocity
 
     def leave_ground(self) -> None:

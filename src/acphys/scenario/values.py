@@ -9,7 +9,7 @@ from typing import Any
 from acphys.flags import PhysicsState, flag_names, parse_flag_names
 from acphys.math.vector import Vector3
 from acphys.motion.commands import MOTION_IDS, STYLE_MASK, motion_id
-from acphys.precision import f32
+from acphys.precision import FLT_MAX, f32
 
 
 class ScenarioError(ValueError):
@@ -69,10 +69,20 @@ def float32(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low
 SHAPE_EXTENT = 1000.0
 
 
-def vector(ctx: Ctx, key: str, value: Any) -> Vector3:
+def _three_numbers(ctx: Ctx, key: str, value: Any) -> tuple[float, float, float]:
     if not isinstance(value, list) or len(value) != 3:
         raise ctx.fail(key, f"expected a list of 3 numbers, got {kind(value)}")
-    return Vector3(*(number(ctx, f"{key}[{i}]", item) for i, item in enumerate(value)))
+    x, y, z = (number(ctx, f"{key}[{i}]", item) for i, item in enumerate(value))
+    return x, y, z
+
+
+def vector(ctx: Ctx, key: str, value: Any) -> Vector3:
+    """Three numbers as a ``Vector3``: the float32s retail stores, so each must be in float32 range."""
+    components = _three_numbers(ctx, key, value)
+    for i, component in enumerate(components):
+        if abs(component) > FLT_MAX:
+            raise ctx.fail(f"{key}[{i}]", f"{component:g} is beyond the float32 range (±{FLT_MAX:.4g})")
+    return Vector3(*components)
 
 
 def local_point(ctx: Ctx, key: str, value: Any) -> Vector3:
@@ -164,14 +174,10 @@ MAX_SPIN = 36000.0
 def degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
     """An angular velocity given in degrees per second (at most ``MAX_SPIN`` about each axis),
     returned in radians per second."""
-    degrees = vector(ctx, key, value)
-    if max(abs(degrees.x), abs(degrees.y), abs(degrees.z)) > MAX_SPIN:
-        raise ctx.fail(
-            key,
-            f"each component must be within ±{MAX_SPIN:g} deg/s, "
-            f"got ({degrees.x:g}, {degrees.y:g}, {degrees.z:g})",
-        )
-    return Vector3(*(math.radians(component) for component in degrees))
+    x, y, z = _three_numbers(ctx, key, value)
+    if max(abs(x), abs(y), abs(z)) > MAX_SPIN:
+        raise ctx.fail(key, f"each component must be within ±{MAX_SPIN:g} deg/s, got ({x:g}, {y:g}, {z:g})")
+    return Vector3(math.radians(x), math.radians(y), math.radians(z))
 
 
 def motion(ctx: Ctx, key: str, value: Any) -> int:

@@ -46,7 +46,6 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
-from acphys.geometry.bbox import position_localtoglobal
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id, get_block_offset
 from acphys.math.position import Position
@@ -566,7 +565,7 @@ class ObjCell:
 
         Retail: CObjCell::find_cell_list @ 0x0052B990 (acclient.c:347321)
         """
-        global_sphere = Sphere.owning(position_localtoglobal(p, p, sphere.center), sphere.radius)
+        global_sphere = Sphere.owning(p.localtoglobal(p, sphere.center), sphere.radius)
         ObjCell.find_cell_list(p, [global_sphere], cell_array, path)
 
     @staticmethod
@@ -579,7 +578,7 @@ class ObjCell:
         Retail: CObjCell::find_cell_list @ 0x0052B9F0 (acclient.c:347336)
         """
         spheres = [
-            Sphere.owning(position_localtoglobal(p, p, cyl.low_pt), cyl.radius)
+            Sphere.owning(p.localtoglobal(p, cyl.low_pt), cyl.radius)
             for cyl in cylspheres[:MAX_CYLSPHERE_CELL_LIST]
         ]
         ObjCell.find_cell_list(p, spheres, cell_array, path)

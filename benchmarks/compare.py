@@ -1,0 +1,62 @@
+"""Compare the speed of two acphys checkouts in the same run.
+
+Runs ``acphys bench --json`` alternately for a baseline checkout and for this one,
+``--rounds`` times each, and reports every workload's best rate for both and their
+ratio. Alternating rounds and taking the best of each side keeps a busy machine's
+noise out of the ratio::
+
+    git worktree add ../acphys-before HEAD~1          # or any checkout
+    .venv/bin/python benchmarks/compare.py ../acphys-before --rounds 5
+
+The baseline runs with this checkout's interpreter and ``PYTHONPATH`` pointing at
+the baseline's ``src``. Nothing here asserts a time.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parents[1]
+
+
+def bench(src: Path, bodies: int, seconds: float) -> dict[str, float]:
+    """One ``acphys bench`` of the checkout whose sources are ``src``: rate by workload."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "bench.json"
+        env = {**os.environ, "PYTHONPATH": str(src)}
+        command = [sys.executable, "-m", "acphys.cli", "bench", "--bodies", str(bodies)]
+        command += ["--seconds", str(seconds), "--json", str(out)]
+        subprocess.run(command, env=env, check=True, stdout=subprocess.DEVNULL)
+        results = json.loads(out.read_text(encoding="utf-8"))
+    return {row["name"]: row["rate"] for row in results}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("baseline", type=Path, help="the checkout to compare against (its root)")
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--bodies", type=int, default=100)
+    parser.add_argument("--seconds", type=float, default=3.0)
+    args = parser.parse_args(argv)
+    sides = {"baseline": args.baseline.resolve() / "src", "this": HERE / "src"}
+    best: dict[str, dict[str, float]] = {side: {} for side in sides}
+    for _ in range(args.rounds):
+        for side, src in sides.items():
+            for name, rate in bench(src, args.bodies, args.seconds).items():
+                best[side][name] = max(rate, best[side].get(name, 0.0))
+    print(f"{'workload':10} {'baseline steps/s':>17} {'this steps/s':>13} {'this/baseline':>14}")
+    for name, rate in best["this"].items():
+        before = best["baseline"].get(name)
+        ratio = f"{rate / before:14.3f}" if before else f"{'-':>14}"
+        print(f"{name:10} {before or 0.0:17,.0f} {rate:13,.0f} {ratio}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -8,6 +8,13 @@ noise out of the ratio::
     git worktree add ../acphys-before HEAD~1          # or any checkout
     .venv/bin/python benchmarks/compare.py ../acphys-before --rounds 5
 
+On a machine too noisy for times, ``--instructions`` counts instructions instead
+(``valgrind --tool=callgrind``, the same count every run): each workload runs for
+``--seconds`` and for three times that, and the difference, divided by the extra
+body-steps, is the cost of one body-step without the start-up and the building::
+
+    .venv/bin/python benchmarks/compare.py ../acphys-before --instructions --bodies 20 --seconds 0.5
+
 The baseline runs with this checkout's interpreter and ``PYTHONPATH`` pointing at
 the baseline's ``src``. Nothing here asserts a time.
 """
@@ -37,14 +44,45 @@ def bench(src: Path, bodies: int, seconds: float) -> dict[str, float]:
     return {row["name"]: row["rate"] for row in results}
 
 
+#: Runs one workload to its end (the body of a ``python -c`` under callgrind).
+_WORKLOAD = (
+    "import sys; from acphys.bench import WORKLOADS; "
+    "WORKLOADS[sys.argv[1]][1](int(sys.argv[2]), float(sys.argv[3])).run()"
+)
+
+
+def instructions(src: Path, workload: str, bodies: int, seconds: float) -> float:
+    """Instructions per body-step of ``workload`` for the checkout whose sources are ``src``."""
+
+    def count(duration: float) -> int:
+        command = ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"]
+        command += [sys.executable, "-c", _WORKLOAD, workload, str(bodies), str(duration)]
+        env = {**os.environ, "PYTHONPATH": str(src)}
+        run = subprocess.run(command, env=env, check=True, capture_output=True, text=True)
+        line = next(line for line in run.stderr.splitlines() if "Collected :" in line)
+        return int(line.rsplit(":", 1)[1])
+
+    extra_steps = bodies * round(2 * seconds * 30.0)  # the bench's 30-Hz driver
+    return (count(3 * seconds) - count(seconds)) / extra_steps
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("baseline", type=Path, help="the checkout to compare against (its root)")
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--bodies", type=int, default=100)
     parser.add_argument("--seconds", type=float, default=3.0)
+    parser.add_argument("--instructions", action="store_true", help="count instructions (callgrind)")
     args = parser.parse_args(argv)
     sides = {"baseline": args.baseline.resolve() / "src", "this": HERE / "src"}
+    if args.instructions:
+        from acphys.bench import WORKLOADS
+
+        print(f"{'workload':10} {'baseline instr/step':>20} {'this instr/step':>16} {'this/baseline':>14}")
+        for name in WORKLOADS:
+            before, after = (instructions(src, name, args.bodies, args.seconds) for src in sides.values())
+            print(f"{name:10} {before:20,.0f} {after:16,.0f} {after / before:14.3f}")
+        return 0
     best: dict[str, dict[str, float]] = {side: {} for side in sides}
     for _ in range(args.rounds):
         for side, src in sides.items():

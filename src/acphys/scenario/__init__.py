@@ -22,12 +22,14 @@ from acphys.flags import TransientState
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
+from acphys.math.cell_id import FIRST_ENV_CELL
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.motion.motion_table import MotionTable
 from acphys.motion.weenie import Weenie
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
+from acphys.precision import f32
 from acphys.scenario import values as read
 from acphys.scenario.events import read_event, speed_limited
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
@@ -300,10 +302,7 @@ def _read_body(
     body.enter_world(Position(cell_at(world, landblock, origin), frame))
     on_ground = read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False))
     if on_ground and not body.transient_state & TransientState.CONTACT:
-        # Placement found nothing underfoot (no terrain here): a level contact plane at the origin.
-        body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
-        body.contact_plane = Plane.horizontal(origin.z)
-        body.contact_plane_cell_id = body.position.objcell_id
+        _put_on_ground(ctx, f"{key}.origin", body)
     body.calc_acceleration()
     if motion_table is not None:
         body.set_motion_table(motion_table)
@@ -312,6 +311,41 @@ def _read_body(
     if "omega" in table:
         body.set_omega(read.degrees_per_second(ctx, f"{key}.omega", table["omega"]))
     return body
+
+
+#: How far below its origin ``on_ground`` looks for the ground a body is to stand on, in metres.
+ON_GROUND_REACH = 2.0
+
+
+def _put_on_ground(ctx: Ctx, key: str, body: PhysicsObj) -> None:
+    """``on_ground = true`` for a body that placement left out of contact: drop it straight down
+    onto what is under it (terrain, a floor, an object), as one swept fall of at most
+    ``ON_GROUND_REACH`` committed by ``SetPositionInternal``. Not retail: the scenario's promise
+    that the body starts on the ground. (A body under the terrain needs nothing of this: retail's
+    placement lifts it onto the terrain.) A body further above the terrain is an error naming the
+    gap; where there is no ground at all (no terrain, nothing below), the body gets a level
+    contact plane at its origin.
+    """
+    here = body.position
+    origin = here.frame.origin
+    outdoors = (here.objcell_id & 0xFFFF) < FIRST_ENV_CELL
+    terrain = body.world.ground_height(here.objcell_id, origin) if outdoors else None
+    below = here.copy()
+    below.frame.origin.z = f32(origin.z - ON_GROUND_REACH)
+    transit = body.transition(here, below)
+    if transit is not None and transit.collision_info.contact_plane_valid:
+        body.set_position_internal(transit)
+        return
+    if terrain is not None:
+        raise ctx.fail(
+            key,
+            f"on_ground, but {origin.z - terrain:.3g} m above the terrain under it (z {terrain:g}), "
+            f"out of the {ON_GROUND_REACH:g} m on_ground reaches: lower the origin or leave on_ground out",
+        )
+    # Nothing underfoot (no terrain here): a level contact plane at the origin.
+    body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE
+    body.contact_plane = Plane.horizontal(origin.z)
+    body.contact_plane_cell_id = here.objcell_id
 
 
 # -- entry points ---------------------------------------------------------------------------

@@ -34,7 +34,8 @@ from acphys.plot import (
     select_bodies,
     write_plot,
 )
-from acphys.scenario import ScenarioError, builtin_scenarios, load_scenario
+from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenarios, load_scenario
+from acphys.scenario.motion_tables import builtin_motion_table_text, builtin_motion_tables
 from acphys.simulation import Simulation
 from acphys.trace import TraceError, diff_traces
 from acphys.view import show
@@ -72,6 +73,11 @@ def _build_parser() -> argparse.ArgumentParser:
 
     check = commands.add_parser("check", help="validate a scenario file")
     check.add_argument("scenario")
+
+    show_ = commands.add_parser(
+        "show", help="print a built-in scenario or motion table as TOML to start from"
+    )
+    show_.add_argument("name", help=f"one of: {', '.join([*builtin_scenarios(), *builtin_motion_tables()])}")
 
     diff = commands.add_parser("diff", help="the first divergence between two traces")
     diff.add_argument("a")
@@ -141,6 +147,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _run(console, args.scenario, args.trace, args.until, args.plot)
         if args.command == "check":
             return _check(console, args.scenario)
+        if args.command == "show":
+            return _show(args.name)
         if args.command == "plot":
             return _plot(console, args.trace, args.output, args.bodies, args.view)
         if args.command == "view":
@@ -161,7 +169,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _fail(message: str, code: int) -> int:
-    print(f"acphys: error: {message}", file=sys.stderr)
+    """Print ``message``, one ``acphys: error:`` line per problem (a scenario can have several)."""
+    for line in message.splitlines() or [""]:
+        print(f"acphys: error: {line}", file=sys.stderr)
     return code
 
 
@@ -169,6 +179,7 @@ def _run(
     console: Console, scenario: str | None, trace: str | None, until: float | None, plot: str | None = None
 ) -> int:
     sim = load_scenario(scenario)
+    _warn(sim)
     end = sim.duration if until is None else until
     if not (math.isfinite(end) and end >= 0.0):
         return _fail(f"--until must be a non-negative number of seconds, got {until}", EXIT_BAD_INPUT)
@@ -235,8 +246,14 @@ def _triple(v: Vector3) -> str:
     return f"{v.x:.2f} {v.y:.2f} {v.z:.2f}"
 
 
+def _warn(sim: Simulation) -> None:
+    for warning in sim.warnings:
+        print(f"acphys: warning: {warning}", file=sys.stderr)
+
+
 def _check(console: Console, scenario: str) -> int:
     sim = load_scenario(scenario)
+    _warn(sim)
     bodies = _count(len(sim.bodies), "body", "bodies")
     events = _count(len(sim.events), "event", "events")
     console.print(
@@ -244,6 +261,19 @@ def _check(console: Console, scenario: str) -> int:
         soft_wrap=True,
     )
     return 0
+
+
+def _show(name: str) -> int:
+    """Print the TOML of a built-in scenario, or of a built-in motion table as a scenario's
+    ``[motion_table.NAME]`` section."""
+    if name in builtin_scenarios():
+        sys.stdout.write(builtin_scenario_text(name))
+        return 0
+    if name in builtin_motion_tables():
+        sys.stdout.write(builtin_motion_table_text(name))
+        return 0
+    known = ", ".join([*builtin_scenarios(), *builtin_motion_tables()])
+    return _fail(f"{name}: no built-in scenario or motion table (built-in: {known})", EXIT_BAD_INPUT)
 
 
 def _diff(console: Console, a: str, b: str, tol: float) -> int:

@@ -129,6 +129,8 @@ class Simulation:
         self.tick_seconds = driver_tick_seconds(driver_hz)
         self.duration = duration
         self.name = name
+        #: What the scenario reader found odd but loaded (one line each), for the user to see.
+        self.warnings: list[str] = []
         self.tick = 0
         self._bodies: dict[str, PhysicsObj] = {}
         for body in bodies:

@@ -91,9 +91,12 @@ def test_one_wrong_value_is_a_clear_error_or_a_sound_run(name: str) -> None:
         try:
             sim = build_scenario(mutated, source=f"<fuzz {name}>")
         except ScenarioError as error:
-            message = str(error)
-            assert message.startswith(f"<fuzz {name}>"), where
-            assert "\n" not in message, where
+            # Each problem is one line naming the source; one wrong value can be several problems
+            # (a list of wrong entries), but what only depends on a broken part says nothing.
+            assert str(error).splitlines() == error.problems, where
+            for problem in error.problems:
+                assert problem.startswith(f"<fuzz {name}>"), where
+                assert "\n" not in problem, where
             continue
         sim.run(until=min(sim.duration, 0.2))
         for body in sim.bodies:

@@ -272,7 +272,7 @@ def test_the_module_entry_point_checks_and_fails_in_one_line(tmp_path: Path) -> 
     assert done.returncode == 2
     assert done.stdout == ""
     assert done.stderr.splitlines() == [
-        f"acphys: error: {bad}: body[0].velocity[1]: expected a finite number, got nan"
+        f"acphys: error: {bad}: body[0].velocity[1]: expected a finite number, got nan (line 7, body 'a')"
     ]
 
     done = _command("run", "--until", "abc", cwd=tmp_path)

@@ -313,7 +313,6 @@ def test_dat_motion_table_errors(tmp_path: Path) -> None:
     del records[LINK_ANIM]
     simple_dat(tmp_path, records)
     # the human's table is read with its setup: the error names the setup key
-    with pytest.raises(
-        acphys.ScenarioError, match=r"body\[0\]\.setup: .*: motion table 0x09000001: no animation 0x03000012$"
-    ):
+    missing = r"motion table 0x09000001: no animation 0x03000012 \(line \d+, body 'walker'\)$"
+    with pytest.raises(acphys.ScenarioError, match=r"body\[0\]\.setup: .*: " + missing):
         load(tmp_path, WALK.format(extra=""))

@@ -70,10 +70,13 @@ def load(folder: Path, text: str, name: str = "world.toml") -> Simulation:
 def fails(folder: Path, text: str, key: str, problem: str) -> None:
     with pytest.raises(acphys.ScenarioError) as caught:
         load(folder, text)
-    message = str(caught.value)
-    assert message.startswith(f"{folder / 'world.toml'}: {key}: "), message
-    assert problem in message, message
-    assert "\n" not in message
+    # The problem at ``key`` is among those found (a scenario reports each independent one),
+    # each of them one line.
+    problems = caught.value.problems
+    at_key = [p for p in problems if p.startswith(f"{folder / 'world.toml'}: {key}: ")]
+    assert at_key, problems
+    assert problem in at_key[0], problems
+    assert all("\n" not in p for p in problems)
 
 
 # -- setups -----------------------------------------------------------------------------------

@@ -11,6 +11,7 @@ typo never passes silently.
 
 from __future__ import annotations
 
+import math
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
@@ -43,9 +44,10 @@ from acphys.scenario.world_data import (
     read_landblocks,
     read_objects,
     read_solids,
+    warn_outside_landblocks,
 )
 from acphys.setup import BUILTIN_SETUPS, LocationType, Setup, bounding_sphere
-from acphys.simulation import Simulation
+from acphys.simulation import Event, Simulation
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
@@ -108,79 +110,84 @@ def _motion_table(
     dat_id = setup_id(name)
     if dat_id is not None:
         return data.motion_table(key, dat_id)
+    ctx.uses(f"motion_table.{name}")
     known = ", ".join(["none", *builtin_motion_tables(), *tables, "a DAT table id like '0x09000001'"])
-    raise ctx.fail(key, f"no motion table named {name!r} (known: {known})")
+    raise ctx.missing("motion_table", key, f"no motion table named {name!r} (known: {known})")
 
 
 def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: RetailData) -> dict[str, Setup]:
+    """Every ``[setup.NAME]``; a setup with a problem is reported and left out."""
     if not isinstance(raw, dict):
         raise ctx.fail("setup", f"expected tables [setup.NAME], got {read.kind(raw)}")
     setups: dict[str, Setup] = {}
     for name, value in raw.items():
-        key = f"setup.{name}"
-        table = read.table(ctx, key, value, SETUP_KEYS)
-        spheres = []
-        for index, item in enumerate(read.list_of_tables(ctx, f"{key}.spheres", table.get("spheres", []))):
-            sphere_key = f"{key}.spheres[{index}]"
-            entry = read.table(ctx, sphere_key, item, ("center", "radius"))
-            if "center" not in entry or "radius" not in entry:
-                raise ctx.fail(sphere_key, "a sphere needs center = [x, y, z] and radius")
-            center = read.local_point(ctx, f"{sphere_key}.center", entry["center"])
-            radius = read.float32(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
-            spheres.append(Sphere(center, radius))
-        cylspheres = []
-        for index, item in enumerate(
-            read.list_of_tables(ctx, f"{key}.cylspheres", table.get("cylspheres", []))
-        ):
-            cyl_key = f"{key}.cylspheres[{index}]"
-            entry = read.table(ctx, cyl_key, item, ("low_pt", "radius", "height"))
-            if any(part not in entry for part in ("low_pt", "radius", "height")):
-                raise ctx.fail(cyl_key, "a cylsphere needs low_pt = [x, y, z], radius and height")
-            low_pt = read.local_point(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
-            radius = read.float32(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
-            height = read.float32(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
-            cylspheres.append(CylSphere(low_pt, radius, height))
-
-        holding: dict[int, LocationType] = {}
-        for index, item in enumerate(
-            read.list_of_tables(ctx, f"{key}.holding_locations", table.get("holding_locations", []))
-        ):
-            holding_key = f"{key}.holding_locations[{index}]"
-            entry = read.table(ctx, holding_key, item, ("location", "part", "origin", "heading"))
-            where = entry.get("location")
-            if not isinstance(where, int) or isinstance(where, bool) or not 0 <= where <= 0xFFFFFFFF:
-                raise ctx.fail(
-                    f"{holding_key}.location", f"expected a location id (an integer), got {where!r}"
-                )
-            if where in holding:
-                raise ctx.fail(f"{holding_key}.location", f"location {where} is given twice")
-            part = entry.get("part", -1)
-            if part not in (-1, 0) or isinstance(part, bool):
-                raise ctx.fail(f"{holding_key}.part", f"a scenario setup has one part: -1 or 0, got {part!r}")
-            origin = read.local_point(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
-            heading = read.float32(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
-            holding[where] = LocationType(part & 0xFFFFFFFF, Frame.from_heading(origin, heading))
-
-        def length(field: str) -> float:
-            return read.float32(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)  # noqa: B023
-
-        motion_table = None
-        if "motion_table" in table:
-            motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
-        setups[name] = Setup(
-            name=name,
-            spheres=spheres,
-            cylspheres=cylspheres,
-            height=length("height"),
-            radius=length("radius"),
-            step_up_height=length("step_up_height"),
-            step_down_height=length("step_down_height"),
-            physics_bsp=read_solids(ctx, key, table),
-            sorting_sphere=bounding_sphere(spheres),
-            motion_table=motion_table,
-            holding_locations=holding,
-        )
+        with ctx.part(f"setup.{name}"):
+            setups[name] = _read_setup(ctx, f"setup.{name}", name, value, tables, data)
     return setups
+
+
+def _read_setup(
+    ctx: Ctx, key: str, name: str, value: Any, tables: dict[str, MotionTable], data: RetailData
+) -> Setup:
+    """One ``[setup.NAME]``."""
+    table = read.table(ctx, key, value, SETUP_KEYS)
+    spheres = []
+    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.spheres", table.get("spheres", []))):
+        sphere_key = f"{key}.spheres[{index}]"
+        entry = read.table(ctx, sphere_key, item, ("center", "radius"))
+        if "center" not in entry or "radius" not in entry:
+            raise ctx.fail(sphere_key, "a sphere needs center = [x, y, z] and radius")
+        center = read.local_point(ctx, f"{sphere_key}.center", entry["center"])
+        radius = read.float32(ctx, f"{sphere_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+        spheres.append(Sphere(center, radius))
+    cylspheres = []
+    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.cylspheres", table.get("cylspheres", []))):
+        cyl_key = f"{key}.cylspheres[{index}]"
+        entry = read.table(ctx, cyl_key, item, ("low_pt", "radius", "height"))
+        if any(part not in entry for part in ("low_pt", "radius", "height")):
+            raise ctx.fail(cyl_key, "a cylsphere needs low_pt = [x, y, z], radius and height")
+        low_pt = read.local_point(ctx, f"{cyl_key}.low_pt", entry["low_pt"])
+        radius = read.float32(ctx, f"{cyl_key}.radius", entry["radius"], 0.0, 1000.0, open_low=True)
+        height = read.float32(ctx, f"{cyl_key}.height", entry["height"], 0.0, 1000.0)
+        cylspheres.append(CylSphere(low_pt, radius, height))
+
+    holding: dict[int, LocationType] = {}
+    for index, item in enumerate(
+        read.list_of_tables(ctx, f"{key}.holding_locations", table.get("holding_locations", []))
+    ):
+        holding_key = f"{key}.holding_locations[{index}]"
+        entry = read.table(ctx, holding_key, item, ("location", "part", "origin", "heading"))
+        where = entry.get("location")
+        if not isinstance(where, int) or isinstance(where, bool) or not 0 <= where <= 0xFFFFFFFF:
+            raise ctx.fail(f"{holding_key}.location", f"expected a location id (an integer), got {where!r}")
+        if where in holding:
+            raise ctx.fail(f"{holding_key}.location", f"location {where} is given twice")
+        part = entry.get("part", -1)
+        if part not in (-1, 0) or isinstance(part, bool):
+            raise ctx.fail(f"{holding_key}.part", f"a scenario setup has one part: -1 or 0, got {part!r}")
+        origin = read.local_point(ctx, f"{holding_key}.origin", entry.get("origin", [0.0, 0.0, 0.0]))
+        heading = read.float32(ctx, f"{holding_key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
+        holding[where] = LocationType(part & 0xFFFFFFFF, Frame.from_heading(origin, heading))
+
+    def length(field: str) -> float:
+        return read.float32(ctx, f"{key}.{field}", table.get(field, 0.0), 0.0, 1000.0)
+
+    motion_table = None
+    if "motion_table" in table:
+        motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
+    return Setup(
+        name=name,
+        spheres=spheres,
+        cylspheres=cylspheres,
+        height=length("height"),
+        radius=length("radius"),
+        step_up_height=length("step_up_height"),
+        step_down_height=length("step_down_height"),
+        physics_bsp=read_solids(ctx, key, table),
+        sorting_sphere=bounding_sphere(spheres),
+        motion_table=motion_table,
+        holding_locations=holding,
+    )
 
 
 def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
@@ -241,8 +248,9 @@ def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData) -> Setup
             if dat_id >> 24 != SETUP_ID_TYPE:
                 raise ctx.fail(key, f"{name} is not a setup id (setup ids are 0x02xxxxxx)")
             return data.setup(key, dat_id)
+        ctx.uses(f"setup.{name}")
         known = ", ".join([*BUILTIN_SETUPS, *setups, "a DAT setup id like '0x02000001'"])
-        raise ctx.fail(key, f"no setup named {name!r} (known: {known})")
+        raise ctx.missing("setup", key, f"no setup named {name!r} (known: {known})")
 
     return find
 
@@ -299,6 +307,7 @@ def _read_body(
         motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
 
     frame = Frame.from_heading(origin, heading)
+    warn_outside_landblocks(ctx, f"{key}.landblock", world, landblock)
     body.enter_world(Position(cell_at(world, landblock, origin), frame))
     on_ground = read.boolean(ctx, f"{key}.on_ground", table.get("on_ground", False))
     if on_ground and not body.transient_state & TransientState.CONTACT:
@@ -379,7 +388,39 @@ def parse_scenario(
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
-    return build_scenario(document, source, default_name, folder)
+    return build_scenario(document, source, default_name, folder, read.TomlLines(text))
+
+
+def _read_bodies(
+    ctx: Ctx,
+    raw: Any,
+    world: World,
+    find_setup: SetupLookup,
+    tables: dict[str, MotionTable],
+    data: RetailData,
+    objects: list[PhysicsObj],
+) -> list[PhysicsObj]:
+    """Every ``[[body]]`` (at least one); a body with a problem is reported and left out."""
+    bodies: list[PhysicsObj] = []
+    with ctx.part("body"):
+        raw_bodies = read.list_of_tables(ctx, "body", raw)
+        if not raw_bodies:
+            raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
+        names = {body.name for body in objects}
+        for index, item in enumerate(raw_bodies):
+            name = item.get("name") if isinstance(item, dict) else None
+            if isinstance(name, str):
+                ctx.label(f"body[{index}]", f"body {name!r}")
+            with ctx.part(f"body.{name}" if isinstance(name, str) else "body.?"):
+                body = _read_body(ctx, f"body[{index}]", item, world, find_setup, tables, data)
+                if any(other.name == body.name for other in bodies):
+                    raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
+                if body.name in names:
+                    raise ctx.fail(
+                        f"body[{index}].name", f"a body and an object are both named {body.name!r}"
+                    )
+                bodies.append(body)
+    return bodies
 
 
 def build_scenario(
@@ -387,45 +428,58 @@ def build_scenario(
     source: str = "<scenario>",
     default_name: str = "scenario",
     folder: str | Path | None = None,
+    lines: read.TomlLines | None = None,
 ) -> Simulation:
     """Build a :class:`Simulation` from a scenario already read into Python values (what
-    ``tomllib`` gives for the TOML), checking every key as :func:`parse_scenario` does."""
-    ctx = Ctx(source)
-    read.table(ctx, "", document, TOP_KEYS)
-    header = _read_header(ctx, document.get("scenario", {}), default_name)
-    tables = read_motion_tables(ctx, document.get("motion_table", {}))
-    scripts = read_scripts(ctx, document.get("script", {}))
+    ``tomllib`` gives for the TOML), checking every key as :func:`parse_scenario` does.
+
+    Every independent problem is found: the :class:`ScenarioError` lists them all, one line
+    each, with the TOML line of the key when ``lines`` (the text's :class:`TomlLines`) is given.
+    """
+    ctx = Ctx(source, lines)
+    with ctx.part():
+        read.table(ctx, "", document, TOP_KEYS)
+    header = _Header(default_name, math.inf, 60.0, None, 0)  # what a broken header leaves to check
+    with ctx.part():
+        header = _read_header(ctx, document.get("scenario", {}), default_name)
+    tables: dict[str, MotionTable] = {}
+    with ctx.part("motion_table"):
+        tables = read_motion_tables(ctx, document.get("motion_table", {}))
+    scripts: dict[str, int] = {}
+    with ctx.part("script"):
+        scripts = read_scripts(ctx, document.get("script", {}))
 
     world = World(seed=header.seed)
     with read_data(ctx, document.get("data", {}), folder) as data:
-        setups = _read_setups(ctx, document.get("setup", {}), tables, data)
-        read_landblocks(ctx, document.get("landblock", []), world, data)
-        read_buildings(ctx, document.get("building", []), world)
+        setups: dict[str, Setup] = {}
+        with ctx.part("setup"):
+            setups = _read_setups(ctx, document.get("setup", {}), tables, data)
+        with ctx.part():
+            read_landblocks(ctx, document.get("landblock", []), world, data)
+        with ctx.part():
+            read_buildings(ctx, document.get("building", []), world)
         find_setup = _setup_lookup(ctx, setups, data)
-        objects = read_objects(ctx, document.get("object", []), world, find_setup)
-        raw_bodies = read.list_of_tables(ctx, "body", document.get("body", []))
-        if not raw_bodies:
-            raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
-        bodies: list[PhysicsObj] = []
-        for index, raw in enumerate(raw_bodies):
-            body = _read_body(ctx, f"body[{index}]", raw, world, find_setup, tables, data)
-            if any(other.name == body.name for other in bodies):
-                raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
-            if any(other.name == body.name for other in objects):
-                raise ctx.fail(f"body[{index}].name", f"a body and an object are both named {body.name!r}")
-            bodies.append(body)
+        objects: list[PhysicsObj] = []
+        with ctx.part():
+            objects = read_objects(ctx, document.get("object", []), world, find_setup)
+        bodies = _read_bodies(ctx, document.get("body", []), world, find_setup, tables, data, objects)
     by_name = {body.name: body for body in bodies}
     if header.player is not None:
-        if header.player not in by_name:
-            raise ctx.fail("scenario.player", f"no body named {header.player!r}")
-        world.player = next(body for body in bodies if body.name == header.player)
+        with ctx.part():
+            ctx.uses(f"body.{header.player}")
+            if header.player not in by_name:
+                raise ctx.missing("body", "scenario.player", f"no body named {header.player!r}")
+            world.player = by_name[header.player]
 
-    raw_events = read.list_of_tables(ctx, "event", document.get("event", []))
-    events = [
-        read_event(ctx, f"event[{index}]", raw, by_name, header.duration, scripts)
-        for index, raw in enumerate(raw_events)
-    ]
-    return Simulation(
+    events: list[Event] = []
+    with ctx.part():
+        for index, raw in enumerate(read.list_of_tables(ctx, "event", document.get("event", []))):
+            if isinstance(raw, dict) and isinstance(raw.get("body"), str):
+                ctx.label(f"event[{index}]", f"{raw.get('action', 'event')} of {raw['body']!r}")
+            with ctx.part():
+                events.append(read_event(ctx, f"event[{index}]", raw, by_name, header.duration, scripts))
+    ctx.check()
+    sim = Simulation(
         world,
         bodies,
         events,
@@ -433,6 +487,15 @@ def build_scenario(
         duration=header.duration,
         name=header.name,
     )
+    sim.warnings = ctx.warnings
+    return sim
+
+
+def builtin_scenario_text(name: str) -> str:
+    """The TOML text of the built-in scenario ``name`` (a KeyError names the known ones)."""
+    if name not in builtin_scenarios():
+        raise KeyError(f"no built-in scenario {name!r} (built-in: {', '.join(builtin_scenarios())})")
+    return resources.files("acphys.data.scenarios").joinpath(f"{name}.toml").read_text("utf-8")
 
 
 def load_scenario(path: str | Path | None = None) -> Simulation:
@@ -442,12 +505,14 @@ def load_scenario(path: str | Path | None = None) -> Simulation:
     """
     if path is None or (isinstance(path, str) and path in builtin_scenarios()):
         name = DEFAULT_SCENARIO if path is None else str(path)
-        text = resources.files("acphys.data.scenarios").joinpath(f"{name}.toml").read_text("utf-8")
-        return parse_scenario(text, source=f"<built-in {name}>", default_name=name)
+        return parse_scenario(builtin_scenario_text(name), source=f"<built-in {name}>", default_name=name)
     file = Path(path)
     try:
         text = file.read_text(encoding="utf-8")
     except FileNotFoundError:
+        if isinstance(path, str) and file.suffix == "" and len(file.parts) == 1:
+            known = ", ".join(builtin_scenarios())
+            raise ScenarioError(f"{file}: no such file nor built-in scenario (built-in: {known})") from None
         raise ScenarioError(f"{file}: no such file") from None
     except (OSError, UnicodeDecodeError) as error:
         raise ScenarioError(f"{file}: cannot read: {error}") from None
@@ -460,4 +525,11 @@ def builtin_scenarios() -> list[str]:
     return sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml"))
 
 
-__all__ = ["ScenarioError", "build_scenario", "builtin_scenarios", "load_scenario", "parse_scenario"]
+__all__ = [
+    "ScenarioError",
+    "build_scenario",
+    "builtin_scenario_text",
+    "builtin_scenarios",
+    "load_scenario",
+    "parse_scenario",
+]

@@ -139,7 +139,10 @@ def _other_body(
 ) -> str:
     """The name of the event's ``target``: another body of the scenario (``purpose`` is for the error)."""
     name = read.string(ctx, f"{key}.target", table["target"])
-    if name not in bodies or bodies[name] is body:
+    ctx.uses(f"body.{name}")
+    if name not in bodies:
+        raise ctx.missing("body", f"{key}.target", f"no other body named {name!r} {purpose}")
+    if bodies[name] is body:
         raise ctx.fail(f"{key}.target", f"no other body named {name!r} {purpose}")
     return name
 
@@ -237,9 +240,10 @@ def _manager_apply(
 
         return unconstrain
     name = read.string(ctx, f"{key}.script", table["script"])
+    ctx.uses(f"script.{name}")
     if name not in scripts:
         known = ", ".join(scripts) or "none: declare [script.NAME]"
-        raise ctx.fail(f"{key}.script", f"no script named {name!r} (known: {known})")
+        raise ctx.missing("script", f"{key}.script", f"no script named {name!r} (known: {known})")
     script_id = scripts[name]
 
     def play(obj: PhysicsObj) -> None:
@@ -315,10 +319,7 @@ def read_event(
     at = read.number(ctx, f"{key}.at", table["at"])
     if not 0.0 <= at <= duration:
         raise ctx.fail(f"{key}.at", f"{at:g} s is outside the scenario's [0, {duration:g}] s")
-    name = read.string(ctx, f"{key}.body", table["body"])
-    if name not in bodies:
-        raise ctx.fail(f"{key}.body", f"no body named {name!r} (bodies: {', '.join(sorted(bodies))})")
-    body = bodies[name]
+    # The event's own keys first: they are checked even when its body failed to load.
     action = read.string(ctx, f"{key}.action", table["action"])
     if action not in ACTION_KEYS:
         raise ctx.fail(
@@ -332,6 +333,12 @@ def read_event(
     for needed in required:
         if needed not in table:
             raise ctx.fail(f"{key}.{needed}", f"missing (action {action!r} needs {needed})")
+    name = read.string(ctx, f"{key}.body", table["body"])
+    ctx.uses(f"body.{name}")
+    if name not in bodies:
+        known = ", ".join(sorted(bodies))
+        raise ctx.missing("body", f"{key}.body", f"no body named {name!r} (bodies: {known})")
+    body = bodies[name]
     if action in MOTION_ACTIONS and (body.part_array is None or body.part_array.motion_table_manager is None):
         raise ctx.fail(
             f"{key}.action",

@@ -15,6 +15,7 @@ The built-in tables are files of the same format in ``acphys/data/motion_tables`
 
 from __future__ import annotations
 
+import re
 import tomllib
 from collections.abc import Callable
 from importlib import resources
@@ -220,7 +221,11 @@ def read_motion_tables(ctx: Ctx, raw: Any) -> dict[str, MotionTable]:
     """Every ``[motion_table.NAME]`` of a scenario."""
     if not isinstance(raw, dict):
         raise ctx.fail("motion_table", f"expected tables [motion_table.NAME], got {read.kind(raw)}")
-    return {name: read_motion_table(ctx, f"motion_table.{name}", value) for name, value in raw.items()}
+    tables: dict[str, MotionTable] = {}
+    for name, value in raw.items():
+        with ctx.part(f"motion_table.{name}"):
+            tables[name] = read_motion_table(ctx, f"motion_table.{name}", value)
+    return tables
 
 
 def builtin_motion_tables() -> list[str]:
@@ -229,11 +234,23 @@ def builtin_motion_tables() -> list[str]:
     return sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml"))
 
 
-def builtin_motion_table(name: str) -> MotionTable:
-    """A fresh copy of the built-in motion table ``name`` (``"humanoid"``)."""
+def _builtin_text(name: str) -> str:
     if name not in builtin_motion_tables():
         raise KeyError(f"no built-in motion table {name!r} (known: {', '.join(builtin_motion_tables())})")
-    text = resources.files("acphys.data.motion_tables").joinpath(f"{name}.toml").read_text("utf-8")
+    return resources.files("acphys.data.motion_tables").joinpath(f"{name}.toml").read_text("utf-8")
+
+
+def builtin_motion_table_text(name: str) -> str:
+    """The built-in motion table ``name`` as a scenario's ``[motion_table.NAME]`` section (its file
+    holds one ``[motion_table]``), to copy into a scenario and change."""
+    text = _builtin_text(name)
+    text = re.sub(r"^\[motion_table\]", f"[motion_table.{name}]", text, flags=re.MULTILINE)
+    return re.sub(r"^\[\[motion_table\.", f"[[motion_table.{name}.", text, flags=re.MULTILINE)
+
+
+def builtin_motion_table(name: str) -> MotionTable:
+    """A fresh copy of the built-in motion table ``name`` (``"humanoid"``)."""
+    text = _builtin_text(name)
     source = f"<built-in motion table {name}>"
     try:
         document = tomllib.loads(text)

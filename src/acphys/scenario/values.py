@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from typing import Any
 
 from acphys.flags import PhysicsState, flag_names, parse_flag_names
@@ -13,17 +16,133 @@ from acphys.precision import FLT_MAX, f32
 
 
 class ScenarioError(ValueError):
-    """A scenario that cannot be loaded; the message says where and what."""
+    """A scenario that cannot be loaded; the message says where and what, one line per problem.
+
+    ``problems`` lists them (a scenario read in full reports every independent problem at once).
+    """
+
+    def __init__(self, message: str, problems: list[str] | None = None) -> None:
+        super().__init__(message)
+        self.problems = problems if problems is not None else [message]
+
+
+_ARRAY_HEADER = re.compile(r"\[\[\s*([A-Za-z0-9_.\-]+)\s*\]\]")
+_TABLE_HEADER = re.compile(r"\[\s*([A-Za-z0-9_.\-]+)\s*\]")
+_KEY = re.compile(r"([A-Za-z0-9_\-]+)\s*=")
+
+
+class TomlLines:
+    """Where the tables and keys of a TOML text are: the line of ``[[body]]`` number 2, of its
+    ``origin = ...``. tomllib gives no positions for values, so this scans the text's headers and
+    ``key =`` lines (enough for the scenario format; a key it cannot place has no line)."""
+
+    def __init__(self, text: str) -> None:
+        #: table path ("body[2]", "setup.ball", "motion_table.runner.cycle[0]") -> header line, keys
+        self.tables: dict[str, tuple[int, dict[str, int]]] = {"": (0, {})}
+        #: key path ("body[2].id") -> the text after its ``=``, as written
+        self.written: dict[str, str] = {}
+        counts: dict[str, int] = {}
+        current = ""
+        for number, line in enumerate(text.splitlines(), start=1):
+            stripped = line.strip()
+            if match := _ARRAY_HEADER.match(stripped):
+                name = match.group(1)
+                index = counts[name] = counts.get(name, -1) + 1
+                current = f"{name}[{index}]"
+                self.tables[current] = (number, {})
+            elif match := _TABLE_HEADER.match(stripped):
+                current = match.group(1)
+                self.tables[current] = (number, {})
+            elif match := _KEY.match(stripped):
+                self.tables[current][1].setdefault(match.group(1), number)
+                path = f"{current}.{match.group(1)}" if current else match.group(1)
+                self.written.setdefault(path, stripped[match.end() :].split("#", 1)[0].strip())
+
+    def line(self, key: str) -> int | None:
+        """The line of ``key`` (a scenario key path), else of the table holding it, else None."""
+        table = max((t for t in self.tables if _within(key, t)), key=len)
+        header, keys = self.tables[table]
+        rest = key[len(table) :].lstrip(".")
+        first = re.split(r"[.\[]", rest, maxsplit=1)[0]
+        return keys.get(first, header or None) if rest else (header or None)
+
+
+class Skipped(Exception):
+    """A part of a scenario that uses another part which already failed: its problem is already
+    reported, so this one says nothing (:meth:`Ctx.part` swallows it)."""
+
+
+def _within(key: str, table: str) -> bool:
+    """Whether the key path ``key`` lies in the table path ``table``."""
+    return not table or key == table or key.startswith((f"{table}.", f"{table}["))
 
 
 @dataclass
 class Ctx:
-    """Where in which file a value came from, for error messages."""
+    """Where in which file a value came from, for error messages, and the problems found so far.
+
+    ``lines`` (when the TOML text is at hand) adds the line of the key to each message, and a
+    table given a label (:meth:`label`: ``body "walker"``) names itself in its keys' messages.
+    """
 
     source: str
+    lines: TomlLines | None = None
+    problems: list[str] = field(default_factory=list)
+    #: Things that load but look like mistakes, one line each (``acphys check`` prints them).
+    warnings: list[str] = field(default_factory=list)
+    #: The named parts that failed ("setup.ball", "body.walker", ...), so what uses them is skipped.
+    failed: set[str] = field(default_factory=set)
+    labels: dict[str, str] = field(default_factory=dict)
+
+    def label(self, table: str, text: str) -> None:
+        """Name the table path ``table`` ("body[2]") in the messages of its keys."""
+        self.labels[table] = text
+
+    def warn(self, key: str, text: str) -> None:
+        """Note something that loads but looks like a mistake."""
+        self.warnings.append(str(self.fail(key, text)))
 
     def fail(self, key: str, problem: str) -> ScenarioError:
-        return ScenarioError(f"{self.source}: {key}: {problem}")
+        where = []
+        line = self.lines.line(key) if self.lines is not None else None
+        if line is not None:
+            where.append(f"line {line}")
+        where += [text for table, text in self.labels.items() if table and _within(key, table)]
+        trailer = f" ({', '.join(where)})" if where else ""
+        return ScenarioError(f"{self.source}: {key}: {problem}{trailer}")
+
+    @contextmanager
+    def part(self, name: str | None = None) -> Iterator[None]:
+        """Read one independent part of a scenario: its error is recorded and reading goes on.
+
+        A failed part called ``name`` is remembered: :meth:`uses` skips what needs it.
+        """
+        try:
+            yield
+        except ScenarioError as error:
+            self.problems.extend(error.problems)
+            if name is not None:
+                self.failed.add(name)
+        except Skipped:
+            if name is not None:
+                self.failed.add(name)
+
+    def uses(self, name: str) -> None:
+        """Skip the part being read if it needs ``name`` ("setup.ball") and that part, or the
+        whole section holding it ("setup"), failed."""
+        if name in self.failed or name.split(".", 1)[0] in self.failed:
+            raise Skipped(name)
+
+    def missing(self, section: str, key: str, problem: str) -> ScenarioError:
+        """The error for a name that ``section`` ("body") lacks, unless a part of it failed before
+        its name could be read (the name may be that one's): then the part being read is skipped."""
+        self.uses(f"{section}.?")
+        return self.fail(key, problem)
+
+    def check(self) -> None:
+        """Raise every problem recorded, one line each."""
+        if self.problems:
+            raise ScenarioError("\n".join(self.problems), list(self.problems))
 
 
 def table(ctx: Ctx, key: str, value: Any, allowed: tuple[str, ...]) -> dict[str, Any]:
@@ -113,10 +232,16 @@ def _id(ctx: Ctx, key: str, value: Any, what: str) -> int:
     """An id as an integer or a hex string; ``what`` names it with an example in the error."""
     if isinstance(value, str):
         try:
-            return int(value, 16)
+            number = int(value, 16)
         except ValueError:
             raise ctx.fail(key, f"expected {what}, got {value!r}") from None
+        if not value.lower().startswith("0x"):
+            ctx.warn(key, f'"{value}" is read as hex, 0x{number:X}: write "0x{value}" to say so')
+        return number
     if isinstance(value, int) and not isinstance(value, bool):
+        written = ctx.lines.written.get(key, "") if ctx.lines is not None else ""
+        if written.isdigit() and len(written) in (4, 8):
+            ctx.warn(key, f'{written} is read as decimal, 0x{value:X}: write "0x{written}" if hex was meant')
         return value
     raise ctx.fail(key, f"expected {what}, got {kind(value)}")
 

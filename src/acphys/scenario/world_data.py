@@ -82,60 +82,12 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
     ``height_table`` (the portal DAT's region table when it has none), or with only ``id`` the
     cell DAT's terrain, static objects, env cells (0xXXYY0100 up, ``num_cells`` of them),
     buildings and the env cells' static objects (placed once every landblock is in); ``water``
-    as terrain words."""
+    as terrain words. A landblock with a problem is reported and left out."""
     seen: set[int] = set()
     from_dat: list[tuple[str, int, LandBlock]] = []
     for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
-        key = f"landblock[{index}]"
-        entry = read.table(ctx, key, item, LANDBLOCK_KEYS)
-        if "id" not in entry:
-            raise ctx.fail(f"{key}.id", "missing (a landblock needs id and height, or heights)")
-        landblock = read.landblock(ctx, f"{key}.id", entry["id"])
-        if landblock in seen:
-            raise ctx.fail(f"{key}.id", f"landblock 0x{landblock:04X} is listed twice")
-        seen.add(landblock)
-        if "height" in entry and "heights" in entry:
-            raise ctx.fail(
-                f"{key}.heights", "give height (flat ground) or heights (81 height bytes), not both"
-            )
-        if "heights" in entry:
-            height_bytes = _whole_numbers(ctx, f"{key}.heights", entry["heights"], "height bytes", 0xFF)
-            if "height_table" in entry:
-                table = _height_table(ctx, f"{key}.height_table", entry["height_table"])
-            elif data.portal is not None:
-                table = list(data.height_table(f"{key}.heights"))
-            else:
-                raise ctx.fail(
-                    f"{key}.height_table",
-                    f"missing: heights index a height table and acphys has no default; give "
-                    f"{HEIGHT_TABLE_SIZE} heights in metres, or a [data] portal for retail's region table",
-                )
-        elif "height" in entry:
-            if "height_table" in entry:
-                raise ctx.fail(f"{key}.height_table", "only with heights (flat ground at height needs none)")
-            height = read.float32(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
-            height_bytes, table = [0] * NUM_VERTICES, [height] * HEIGHT_TABLE_SIZE
-        elif data.cell is not None:
-            for extra in ("height_table", "water"):
-                if extra in entry:
-                    raise ctx.fail(
-                        f"{key}.{extra}",
-                        "only with height or heights (a landblock from the cell DAT has its own terrain)",
-                    )
-            block = LandBlock(data.landblock(f"{key}.id", landblock))
-            world.add_landblock(block)
-            from_dat.append((f"{key}.id", landblock, block))
-            continue
-        else:
-            raise ctx.fail(
-                f"{key}.height",
-                "missing (a landblock needs height, or heights and height_table, or a [data] cell "
-                "to read its terrain from)",
-            )
-        words = _water(ctx, f"{key}.water", entry.get("water", "none"))
-        world.add_landblock(
-            LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, height_bytes, words, table))
-        )
+        with ctx.part():
+            _read_landblock(ctx, f"landblock[{index}]", item, world, data, seen, from_dat)
     for key, landblock, block in from_dat:
         info = data.landblock_info(key, landblock)
         if info is None:
@@ -152,6 +104,64 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
         init_buildings(world, block, info, object_setup)
         for record, cell in env_cells:
             init_static_objects(world, cell, record, object_setup)
+
+
+def _read_landblock(
+    ctx: Ctx,
+    key: str,
+    item: Any,
+    world: World,
+    data: RetailData,
+    seen: set[int],
+    from_dat: list[tuple[str, int, LandBlock]],
+) -> None:
+    """One ``[[landblock]]``: added to ``world``, or to ``from_dat`` when its terrain comes from the
+    cell DAT (whose objects and cells :func:`read_landblocks` adds once every landblock is in)."""
+    entry = read.table(ctx, key, item, LANDBLOCK_KEYS)
+    if "id" not in entry:
+        raise ctx.fail(f"{key}.id", "missing (a landblock needs id and height, or heights)")
+    landblock = read.landblock(ctx, f"{key}.id", entry["id"])
+    if landblock in seen:
+        raise ctx.fail(f"{key}.id", f"landblock 0x{landblock:04X} is listed twice")
+    seen.add(landblock)
+    if "height" in entry and "heights" in entry:
+        raise ctx.fail(f"{key}.heights", "give height (flat ground) or heights (81 height bytes), not both")
+    if "heights" in entry:
+        height_bytes = _whole_numbers(ctx, f"{key}.heights", entry["heights"], "height bytes", 0xFF)
+        if "height_table" in entry:
+            table = _height_table(ctx, f"{key}.height_table", entry["height_table"])
+        elif data.portal is not None:
+            table = list(data.height_table(f"{key}.heights"))
+        else:
+            raise ctx.fail(
+                f"{key}.height_table",
+                f"missing: heights index a height table and acphys has no default; give "
+                f"{HEIGHT_TABLE_SIZE} heights in metres, or a [data] portal for retail's region table",
+            )
+    elif "height" in entry:
+        if "height_table" in entry:
+            raise ctx.fail(f"{key}.height_table", "only with heights (flat ground at height needs none)")
+        height = read.float32(ctx, f"{key}.height", entry["height"], 0.0, MAX_LAND_HEIGHT)
+        height_bytes, table = [0] * NUM_VERTICES, [height] * HEIGHT_TABLE_SIZE
+    elif data.cell is not None:
+        for extra in ("height_table", "water"):
+            if extra in entry:
+                raise ctx.fail(
+                    f"{key}.{extra}",
+                    "only with height or heights (a landblock from the cell DAT has its own terrain)",
+                )
+        block = LandBlock(data.landblock(f"{key}.id", landblock))
+        world.add_landblock(block)
+        from_dat.append((f"{key}.id", landblock, block))
+        return
+    else:
+        raise ctx.fail(
+            f"{key}.height",
+            "missing (a landblock needs height, or heights and height_table, or a [data] cell "
+            "to read its terrain from)",
+        )
+    words = _water(ctx, f"{key}.water", entry.get("water", "none"))
+    world.add_landblock(LandBlock(LandBlockStruct((landblock << 16) | 0xFFFF, height_bytes, words, table)))
 
 
 # -- solid setups -----------------------------------------------------------------------------
@@ -219,6 +229,15 @@ def _landblock_point(ctx: Ctx, key: str, value: Any) -> Vector3:
     return origin
 
 
+def warn_outside_landblocks(ctx: Ctx, key: str, world: World, landblock: int) -> None:
+    """Warn of a body or object in a landblock the scenario does not declare when it declares
+    others: it would stand in a void without terrain."""
+    declared = world.landscape.landblocks()
+    if declared and landblock not in declared:
+        listed = ", ".join(f"0x{block:04X}" for block in sorted(declared))
+        ctx.warn(key, f"0x{landblock:04X} is none of the declared landblocks ({listed}): no terrain there")
+
+
 def cell_at(world: World, landblock: int, point: Vector3) -> int:
     """The cell holding the landblock-local ``point``: a room containing it (a scenario
     ``[[building]]``'s or one a cell DAT loaded), else the outdoor cell."""
@@ -232,30 +251,43 @@ OBJECT_KEYS = ("name", "setup", "landblock", "origin", "heading", "scale")
 
 
 def read_objects(ctx: Ctx, raw: Any, world: World, find_setup: SetupLookup) -> list[PhysicsObj]:
-    """Place each ``[[object]]`` in ``world`` (in the room holding its origin, if any)."""
+    """Place each ``[[object]]`` in ``world`` (in the room holding its origin, if any); an object
+    with a problem is reported and left out."""
     objects: list[PhysicsObj] = []
     for index, item in enumerate(read.list_of_tables(ctx, "object", raw)):
-        key = f"object[{index}]"
-        entry = read.table(ctx, key, item, OBJECT_KEYS)
-        for required in ("setup", "landblock", "origin"):
-            if required not in entry:
-                raise ctx.fail(
-                    f"{key}.{required}", "missing (every object needs setup, landblock and origin)"
-                )
-        setup = find_setup(f"{key}.setup", entry["setup"])
-        name = read.string(ctx, f"{key}.name", entry["name"]) if "name" in entry else f"{setup.name}-{index}"
-        if any(other.name == name for other in objects):
-            raise ctx.fail(f"{key}.name", f"two objects are named {name!r}")
-        landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
-        origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
-        heading = read.float32(ctx, f"{key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
-        scale = read.float32(ctx, f"{key}.scale", entry.get("scale", 1.0), 0.0, 1000.0, open_low=True)
-        position = Position(cell_at(world, landblock, origin), Frame.from_heading(origin, heading))
-        try:
-            objects.append(add_static_object(world, name, setup, position, scale))
-        except ValueError as error:
-            raise ctx.fail(key, str(error)) from None
+        with ctx.part():
+            objects.append(_read_object(ctx, f"object[{index}]", index, item, world, find_setup, objects))
     return objects
+
+
+def _read_object(
+    ctx: Ctx,
+    key: str,
+    index: int,
+    item: Any,
+    world: World,
+    find_setup: SetupLookup,
+    objects: list[PhysicsObj],
+) -> PhysicsObj:
+    """One ``[[object]]``, placed in ``world`` (``objects``: those placed before it)."""
+    entry = read.table(ctx, key, item, OBJECT_KEYS)
+    for required in ("setup", "landblock", "origin"):
+        if required not in entry:
+            raise ctx.fail(f"{key}.{required}", "missing (every object needs setup, landblock and origin)")
+    setup = find_setup(f"{key}.setup", entry["setup"])
+    name = read.string(ctx, f"{key}.name", entry["name"]) if "name" in entry else f"{setup.name}-{index}"
+    if any(other.name == name for other in objects):
+        raise ctx.fail(f"{key}.name", f"two objects are named {name!r}")
+    landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
+    origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
+    heading = read.float32(ctx, f"{key}.heading", entry.get("heading", 0.0), -360.0, 360.0)
+    scale = read.float32(ctx, f"{key}.scale", entry.get("scale", 1.0), 0.0, 1000.0, open_low=True)
+    warn_outside_landblocks(ctx, f"{key}.landblock", world, landblock)
+    position = Position(cell_at(world, landblock, origin), Frame.from_heading(origin, heading))
+    try:
+        return add_static_object(world, name, setup, position, scale)
+    except ValueError as error:
+        raise ctx.fail(key, str(error)) from None
 
 
 # -- buildings --------------------------------------------------------------------------------
@@ -385,51 +417,56 @@ def _read_doorways(
 def read_buildings(ctx: Ctx, raw: Any, world: World) -> None:
     """Build each ``[[building]]`` with ``build_house``: its rooms become env cells of the world
     (ids 0x0100 up in their landblock, in order), the building stands in the land cell holding
-    its origin."""
+    its origin. A building with a problem is reported and left out."""
     for index, item in enumerate(read.list_of_tables(ctx, "building", raw)):
-        key = f"building[{index}]"
-        entry = read.table(ctx, key, item, BUILDING_KEYS)
-        for required in ("landblock", "origin", "rooms", "doorways"):
-            if required not in entry:
-                raise ctx.fail(
-                    f"{key}.{required}", "missing (a building needs landblock, origin, rooms and doorways)"
-                )
-        landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
-        origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
-        raw_heading = read.number(ctx, f"{key}.heading", entry.get("heading", 0.0))
-        if raw_heading % 90.0 != 0.0:
+        with ctx.part():
+            _read_building(ctx, f"building[{index}]", item, world)
+
+
+def _read_building(ctx: Ctx, key: str, item: Any, world: World) -> None:
+    """One ``[[building]]``: its rooms and shell added to ``world``."""
+    entry = read.table(ctx, key, item, BUILDING_KEYS)
+    for required in ("landblock", "origin", "rooms", "doorways"):
+        if required not in entry:
             raise ctx.fail(
-                f"{key}.heading",
-                f"rooms are axis-aligned boxes: expected a multiple of 90, got {raw_heading:g}",
+                f"{key}.{required}", "missing (a building needs landblock, origin, rooms and doorways)"
             )
-        heading = int(raw_heading % 360.0)
-        thickness = read.float32(
-            ctx, f"{key}.wall_thickness", entry.get("wall_thickness", 0.25), 0.0, 10.0, open_low=True
+    landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
+    origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
+    raw_heading = read.number(ctx, f"{key}.heading", entry.get("heading", 0.0))
+    if raw_heading % 90.0 != 0.0:
+        raise ctx.fail(
+            f"{key}.heading",
+            f"rooms are axis-aligned boxes: expected a multiple of 90, got {raw_heading:g}",
         )
-        rooms = _read_rooms(ctx, f"{key}.rooms", entry["rooms"], origin, heading)
-        doorways = _read_doorways(ctx, f"{key}.doorways", entry["doorways"], rooms, origin, heading)
-        for lo, hi in rooms.values():
-            for x, y in ((lo.x - thickness, lo.y - thickness), (hi.x + thickness, hi.y + thickness)):
-                if not (0.0 <= x < BLOCK_LENGTH and 0.0 <= y < BLOCK_LENGTH):
-                    raise ctx.fail(
-                        f"{key}.origin",
-                        f"the building reaches ({x:g}, {y:g}), outside its landblock: walls must stay "
-                        f"in [0, 192)",
-                    )
-        # Rooms are numbered after the landblock's other env cells (those a cell DAT loaded, then
-        # earlier buildings'), so ids never clash.
-        first = FIRST_ENV_CELL
-        while world.get_cell(cell_of(landblock, first)) is not None:
-            first += 1
-        specs = [RoomSpec(cell_of(landblock, first + n), lo, hi) for n, (lo, hi) in enumerate(rooms.values())]
-        try:
-            building, cells = build_house(specs, doorways, wall_thickness=thickness)
-        except ValueError as error:
-            raise ctx.fail(key, str(error)) from None
-        land = world.get_cell(outdoor_cell_id(landblock, building.pos.frame.origin))
-        if not isinstance(land, SortCell) or land.has_building():
-            raise ctx.fail(f"{key}.origin", "the land cell at the building's centre already holds a building")
-        for cell in cells:
-            world.add_cell(cell)
-        building.add_to_cell(land)
-        building.source = world
+    heading = int(raw_heading % 360.0)
+    thickness = read.float32(
+        ctx, f"{key}.wall_thickness", entry.get("wall_thickness", 0.25), 0.0, 10.0, open_low=True
+    )
+    rooms = _read_rooms(ctx, f"{key}.rooms", entry["rooms"], origin, heading)
+    doorways = _read_doorways(ctx, f"{key}.doorways", entry["doorways"], rooms, origin, heading)
+    for lo, hi in rooms.values():
+        for x, y in ((lo.x - thickness, lo.y - thickness), (hi.x + thickness, hi.y + thickness)):
+            if not (0.0 <= x < BLOCK_LENGTH and 0.0 <= y < BLOCK_LENGTH):
+                raise ctx.fail(
+                    f"{key}.origin",
+                    f"the building reaches ({x:g}, {y:g}), outside its landblock: walls must stay "
+                    f"in [0, 192)",
+                )
+    # Rooms are numbered after the landblock's other env cells (those a cell DAT loaded, then
+    # earlier buildings'), so ids never clash.
+    first = FIRST_ENV_CELL
+    while world.get_cell(cell_of(landblock, first)) is not None:
+        first += 1
+    specs = [RoomSpec(cell_of(landblock, first + n), lo, hi) for n, (lo, hi) in enumerate(rooms.values())]
+    try:
+        building, cells = build_house(specs, doorways, wall_thickness=thickness)
+    except ValueError as error:
+        raise ctx.fail(key, str(error)) from None
+    land = world.get_cell(outdoor_cell_id(landblock, building.pos.frame.origin))
+    if not isinstance(land, SortCell) or land.has_building():
+        raise ctx.fail(f"{key}.origin", "the land cell at the building's centre already holds a building")
+    for cell in cells:
+        world.add_cell(cell)
+    building.add_to_cell(land)
+    building.source = world

@@ -119,6 +119,10 @@ class Landscape:
             raise ValueError(f"cell {format_cell_id(cell.id)} is already in the landscape")
         self._cells[cell.id] = cell
 
+    def landblocks(self) -> set[int]:
+        """The ids (``0xXXYY``) of the landblocks in the landscape."""
+        return set(self._blocks)
+
     def get_landblock(self, cell_id: int) -> LandBlock | None:
         """The landblock holding ``cell_id`` (any cell of it), or None when it is not there."""
         return self._blocks.get(landblock_of(cell_id))

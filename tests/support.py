@@ -31,12 +31,15 @@ def place(
     heading: float = 0.0,
     on_ground: bool = False,
     motion_table: MotionTable | None = None,
+    setup: Setup | None = None,
 ) -> PhysicsObj:
     """A body entered into ``world`` at ``origin`` (landblock 0xA9B4), active, with its acceleration set.
 
-    With a ``motion_table`` the body also gets a movement manager in its default state.
+    The body is the built-in human (``setup`` for another shape; no spheres at all without
+    ``spheres``). With a ``motion_table`` the body also gets a movement manager in its default state.
     """
-    setup = human_setup() if spheres else Setup(name="marker", spheres=[])
+    if setup is None:
+        setup = human_setup() if spheres else Setup(name="marker", spheres=[])
     body = PhysicsObj(world, name, PartArray(setup))
     body.state = state
     point = Vector3(*origin)

@@ -94,17 +94,27 @@ class Setup:
 
 
 def human_setup() -> Setup:
-    """The retail human (setup 0x02000001): two spheres of radius 0.48 at z 0.475 and 1.35.
+    """The retail human (setup 0x02000001, shared by 0x0200004E): two spheres of radius 0.48 at
+    z 0.475 and 1.35, step-up height 0.6 and step-down height 1.5.
 
-    Its height, radius, step heights and sorting sphere are DAT data acphys
-    does not ship. Stand-ins derived from the two collision spheres: radius
-    0.48 (theirs), height 1.83 (the top of the upper one), and the smallest
-    sorting sphere around them. The step heights stay 0: a scenario that walks
-    humans over objects or stairs gives its own setup explicit step heights.
+    acphys ships no DAT; these values are public dumps of the record: holtburger's census of the
+    end-of-retail client_portal.dat (merklejerk/holtburger, docs/plans/
+    holtburger-3d-host-physics-recovery-plan.md, and its PLAYER_STEP_UP_HEIGHT /
+    PLAYER_STEP_DOWN_HEIGHT in crates/holtburger-world/src/spatial/physics.rs), which give the
+    spheres, the step heights and the height 1.835, as do OpenAC's player-body tests (a fork of
+    acdream). The setup's own radius field and sorting sphere stay stand-ins: radius 0.48 (the
+    spheres'; one dump gives 0.679) and the smallest sphere around the two. A ``[data]`` portal
+    gives the record itself.
     """
     spheres = [Sphere(Vector3(0.0, 0.0, 0.475), 0.48), Sphere(Vector3(0.0, 0.0, 1.35), 0.48)]
     return Setup(
-        name="human", spheres=spheres, height=1.83, radius=0.48, sorting_sphere=bounding_sphere(spheres)
+        name="human",
+        spheres=spheres,
+        height=1.835,
+        radius=0.48,
+        step_up_height=0.6,
+        step_down_height=1.5,
+        sorting_sphere=bounding_sphere(spheres),
     )
 
 

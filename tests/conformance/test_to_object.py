@@ -59,10 +59,10 @@ class TestMoveToObject:
         assert moveto.movement_type == MovementType.MOVE_TO_OBJECT
         assert moveto.sought_object_id == target.id
         assert moveto.top_level_object_id == target.id
-        # CPartArray::GetRadius / GetHeight of the human: 0.48 and 1.83 (acclient.c:319807-319817),
+        # CPartArray::GetRadius / GetHeight of the human: 0.48 and 1.835 (acclient.c:319807-319817),
         # float fields of the setup and of the move-to manager.
         assert moveto.sought_object_radius == f32(0.48)
-        assert moveto.sought_object_height == f32(1.83)
+        assert moveto.sought_object_height == f32(1.835)
 
     def test_a_held_target_is_sought_through_its_holder(self, world):
         world.set_flat_ground(0xA9B4, 50.0)

@@ -121,7 +121,11 @@ class TestCalcNumSteps:
 
 class TestTerrain:
     def test_a_falling_body_lands_on_the_terrain_with_its_sphere_on_the_plane(self, ground: World) -> None:
-        body = place(ground, origin=(96.0, 96.0, 50.3))
+        # A human without step heights: with its step-down height of 1.5 m, placement would already
+        # have put it on the ground (CTransition::find_placement_position, acclient.c:313340).
+        still_up = human_setup()
+        still_up.step_up_height = still_up.step_down_height = 0.0
+        body = place(ground, origin=(96.0, 96.0, 50.3), setup=still_up)
         assert not body.transient_state & TS.CONTACT
         t = sweep(body, 0.0, 0.0, -0.4)
         assert t is not None

@@ -52,8 +52,11 @@ def test_walkable_slope_stands(steps: dict[str, list[dict[str, Any]]]) -> None:
         # changes and no sweep runs (acclient.c:322718).
         assert {"contact", "on_walkable"} <= set(record["transient"])
         assert record["contact_normal"] == pytest.approx(slope_normal(GENTLE), abs=UNIT_TOL)
-        assert record["origin"] == [132.0, 36.0, f32(147.845)]
+        assert record["origin"] == stander[0]["origin"]
         assert record["velocity"] == [0.0, 0.0, 0.0]
+    # Placed with the sphere's low point on the slope, as its origin says (to the float32 spacing
+    # there: placement's own step-down, CTransition::find_placement_position, puts it there).
+    assert stander[0]["origin"] == pytest.approx([132.0, 36.0, 147.845], abs=ulp32(147.845))
 
 
 def test_steep_slope_is_not_walkable_and_slides(steps: dict[str, list[dict[str, Any]]]) -> None:

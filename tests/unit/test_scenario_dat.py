@@ -99,9 +99,10 @@ def test_human_takes_the_portal_setup_step_heights_and_keeps_humanoid(dats: Path
     assert body.movement_manager is not None
 
 
-def test_human_without_data_keeps_zero_step_heights(tmp_path: Path) -> None:
+def test_human_without_data_has_the_public_dumps_step_heights(tmp_path: Path) -> None:
+    # setup 0x02000001 as public DAT dumps give it (acphys.setup.human_setup): 0.6 up, 1.5 down
     setup = load(tmp_path, FLAT).body("a").part_array.setup
-    assert (setup.step_up_height, setup.step_down_height) == (0.0, 0.0)
+    assert (setup.step_up_height, setup.step_down_height) == (f32(0.6), 1.5)
 
 
 def test_a_dat_setup_id_loads_that_setup_for_bodies_and_objects(dats: Path) -> None:

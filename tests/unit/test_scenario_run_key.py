@@ -121,7 +121,8 @@ def test_on_landing_a_player_replays_its_raw_state_and_a_creature_its_interprete
     # acclient.c:344300): the player path (no weenie, or IsThePlayer) replays the raw state and
     # stands; npc = true gives a creature weenie that is not the player, which replays the
     # interpreted state and runs on.
-    text = HEADER + BODY.replace("on_ground = true", "npc = true" if npc else "").replace("50.0]", "51.0]")
+    # 3 m up: beyond the 1.5-m step-down with which placement would put a human on the ground.
+    text = HEADER + BODY.replace("on_ground = true", "npc = true" if npc else "").replace("50.0]", "53.0]")
     text += '[[event]]\nat = 0.0\nbody = "runner"\naction = "motion"\nmotion = "RunForward"\n'
     sim = acphys.parse_scenario(text, source="npc")
     body = sim.body("runner")

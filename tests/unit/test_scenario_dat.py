@@ -205,13 +205,8 @@ def test_ids_not_in_the_dat(dats: Path) -> None:
 
 
 def test_data_needed_but_not_given(dats: Path) -> None:
-    ramp = "heights = [" + ", ".join(map(str, HEIGHTS)) + "]\n"
-    fails(
-        dats,
-        CELL_LANDBLOCK + ramp,
-        "landblock[0].height_table",
-        "or a [data] portal for retail's region table",
-    )
+    steep = "heights = [" + ", ".join(str(250 - h) for h in HEIGHTS) + "]\n"
+    fails(dats, CELL_LANDBLOCK + steep, "landblock[0].heights[0]", "give height_table, or a [data] portal")
     fails(dats, CELL_LANDBLOCK, "landblock[0].height", "or a [data] cell")
     fails(
         dats,

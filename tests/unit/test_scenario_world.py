@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 import acphys
-from acphys.flags import PhysicsState
+from acphys.flags import PhysicsState, TransientState
 from acphys.math.frame import Frame
 from acphys.math.vector import Vector3
 from acphys.scenario import builtin_scenarios
@@ -104,7 +104,11 @@ def test_water_all_and_raw_words() -> None:
     [
         ('[[landblock]]\nid = "0xA9B4"\n', "landblock[0].height", "missing"),
         (FLAT + RAMP, "landblock[0].heights", "not both"),
-        ('[[landblock]]\nid = "0xA9B4"\n' + RAMP, "landblock[0].height_table", "no default"),
+        (
+            '[[landblock]]\nid = "0xA9B4"\n' + RAMP.replace("[0, ", "[201, "),
+            "landblock[0].heights[0]",
+            "height byte 201 is past the part of retail's height table acphys ships (bytes 0-200",
+        ),
         ('[[landblock]]\nid = "0xA9B4"\nheights = [0, 1]\n' + TABLE, "landblock[0].heights", "expected 81"),
         (
             '[[landblock]]\nid = "0xA9B4"\nheights = [' + "0, " * 80 + "256]\n" + TABLE,
@@ -425,3 +429,20 @@ def test_on_ground_keeps_the_contact_plane_placement_found_on_a_slope() -> None:
     normal = body.contact_plane.N
     # The terrain rises 2 m per 24 m along x: the normal leans back against +x.
     assert normal.x < 0.0 and normal.z == pytest.approx(24.0 / (24.0**2 + 2.0**2) ** 0.5, abs=1e-6)
+
+
+def test_heights_without_a_table_index_retails_height_table() -> None:
+    # data/land_height_table.toml: byte i is 2·i m for bytes 0-200 (Region 0x13000000's
+    # LandDefs.land_height_table as public sources give it). A ramp of bytes x + y: the vertex at
+    # (96, 96) is vertex (4, 4), byte 8: 16 m; a human put on the ground there rests on it.
+    text = (
+        '[scenario]\nname = "ramp"\n[[landblock]]\nid = "0xA9B4"\n'
+        + RAMP
+        + '[[body]]\nname = "h"\nlandblock = "0xA9B4"\norigin = [96.0, 96.0, 17.0]\non_ground = true\n'
+    )
+    sim = acphys.parse_scenario(text)
+    assert sim.world.ground_height(0xA9B40024, Vector3(96.0, 96.0, 0.0)) == 16.0
+    body = sim.body("h")
+    assert body.transient_state & TransientState.ON_WALKABLE
+    # the low point of sphere 0 (centre 0.475, radius 0.48) on the sloped plane through (96, 96, 16)
+    assert 16.0 < body.position.frame.origin.z < 16.5

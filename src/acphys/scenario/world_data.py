@@ -8,7 +8,9 @@ Every problem is a :class:`ScenarioError` naming the file and the key.
 
 from __future__ import annotations
 
+import tomllib
 from collections.abc import Callable
+from importlib import resources
 from typing import Any
 
 from acphys.constants import BLOCK_LENGTH
@@ -64,6 +66,23 @@ def _height_table(ctx: Ctx, key: str, value: Any) -> list[float]:
     if not isinstance(value, list) or len(value) != HEIGHT_TABLE_SIZE:
         raise ctx.fail(key, f"expected {HEIGHT_TABLE_SIZE} heights in metres, got {read.kind(value)}")
     return [read.float32(ctx, f"{key}[{i}]", item, 0.0, MAX_LAND_HEIGHT) for i, item in enumerate(value)]
+
+
+def _retail_height_table(ctx: Ctx, key: str, height_bytes: list[int]) -> list[float]:
+    """Retail's land height table as far as acphys ships it (``data/land_height_table.toml``:
+    bytes 0-200, 2 m a step); a height byte beyond it is an error naming the byte. The entries
+    past the shipped ones are never read (no byte reaches them) and repeat the last."""
+    text = resources.files("acphys.data").joinpath("land_height_table.toml").read_text("utf-8")
+    known = tomllib.loads(text)["heights"]
+    highest = max(height_bytes)
+    if highest >= len(known):
+        index = height_bytes.index(highest)
+        raise ctx.fail(
+            f"{key}[{index}]",
+            f"height byte {highest} is past the part of retail's height table acphys ships (bytes "
+            f"0-{len(known) - 1}, 2 m a step to {known[-1]:g} m): give height_table, or a [data] portal",
+        )
+    return known + [known[-1]] * (HEIGHT_TABLE_SIZE - len(known))
 
 
 def _water(ctx: Ctx, key: str, value: Any) -> list[int]:
@@ -133,11 +152,7 @@ def _read_landblock(
         elif data.portal is not None:
             table = list(data.height_table(f"{key}.heights"))
         else:
-            raise ctx.fail(
-                f"{key}.height_table",
-                f"missing: heights index a height table and acphys has no default; give "
-                f"{HEIGHT_TABLE_SIZE} heights in metres, or a [data] portal for retail's region table",
-            )
+            table = _retail_height_table(ctx, f"{key}.heights", height_bytes)
     elif "height" in entry:
         if "height_table" in entry:
             raise ctx.fail(f"{key}.height_table", "only with heights (flat ground at height needs none)")

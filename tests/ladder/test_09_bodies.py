@@ -22,7 +22,7 @@ def test_solid_walkers_stop_at_their_last_clear_steps():
     north, south = sim.body("north-walker"), sim.body("south-walker")
     # The bodies step in turn (north first), closing the 4-m gap by 0.104 a move. A move whose
     # sphere 0 comes within REACH of the other's steps up (CSphere::step_sphere_up,
-    # acclient.c:359071: 0.96 > step_up_height 0) and slides off it (CSphere::slide_sphere,
+    # acclient.c:359071: 0.96 > step_up_height 0.6) and slides off it (CSphere::slide_sphere,
     # acclient.c:358708): head-on nothing is left, COLLIDED, and CTransition::validate_transition
     # (acclient.c:312193) rolls it back. Move m leaves 4 - 0.104 m; m = 30 (south's 15th) would
     # leave 0.88 < REACH, so north keeps 15 moves and south 14, and neither moves again.

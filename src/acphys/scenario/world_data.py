@@ -17,7 +17,7 @@ from acphys.constants import BLOCK_LENGTH
 from acphys.dat.env_cell import init_buildings, init_static_objects
 from acphys.dat.landblock_info import init_static_objs
 from acphys.geometry.bsp import BSPTree
-from acphys.geometry.bsp_builder import box_faces, build_convex_tree, build_union_tree
+from acphys.geometry.bsp_builder import MAX_UNION_SOLIDS, SolidError, box_faces, build_union_tree
 from acphys.geometry.polygon import Polygon
 from acphys.math.cell_id import FIRST_ENV_CELL, cell_of, outdoor_cell_id
 from acphys.math.frame import Frame
@@ -201,8 +201,19 @@ def _faces(ctx: Ctx, key: str, value: Any) -> list[Polygon]:
 def read_solids(ctx: Ctx, key: str, table: dict[str, Any]) -> BSPTree | None:
     """The physics BSP of a setup's ``boxes``, ``polygons`` (one convex solid) and ``solids``
     (several), or None when it has none."""
+    boxes = read.list_of_tables(ctx, f"{key}.boxes", table.get("boxes", []))
+    raw_solids = table.get("solids", [])
+    if not isinstance(raw_solids, list):
+        raise ctx.fail(
+            f"{key}.solids", f"expected a list of solids (each a list of faces), got {read.kind(raw_solids)}"
+        )
+    count = len(boxes) + len(raw_solids) + ("polygons" in table)
+    if count > MAX_UNION_SOLIDS:
+        raise ctx.fail(
+            key, f"a setup has at most {MAX_UNION_SOLIDS} boxes and solids (MAX_UNION_SOLIDS), got {count}"
+        )
     solids: list[tuple[str, list[Polygon]]] = []
-    for index, item in enumerate(read.list_of_tables(ctx, f"{key}.boxes", table.get("boxes", []))):
+    for index, item in enumerate(boxes):
         box_key = f"{key}.boxes[{index}]"
         entry = read.table(ctx, box_key, item, ("min", "max"))
         if "min" not in entry or "max" not in entry:
@@ -217,21 +228,16 @@ def read_solids(ctx: Ctx, key: str, table: dict[str, Any]) -> BSPTree | None:
             raise ctx.fail(box_key, str(error)) from None
     if "polygons" in table:
         solids.append((f"{key}.polygons", _faces(ctx, f"{key}.polygons", table["polygons"])))
-    raw_solids = table.get("solids", [])
-    if not isinstance(raw_solids, list):
-        raise ctx.fail(
-            f"{key}.solids", f"expected a list of solids (each a list of faces), got {read.kind(raw_solids)}"
-        )
     for index, item in enumerate(raw_solids):
         solids.append((f"{key}.solids[{index}]", _faces(ctx, f"{key}.solids[{index}]", item)))
     if not solids:
         return None
-    for solid_key, faces in solids:
-        try:
-            build_convex_tree(faces)
-        except ValueError as error:
-            raise ctx.fail(solid_key, str(error)) from None
-    return build_union_tree([faces for _key, faces in solids])
+    try:
+        return build_union_tree([faces for _key, faces in solids])
+    except SolidError as error:
+        raise ctx.fail(solids[error.index][0], str(error)) from None
+    except ValueError as error:
+        raise ctx.fail(key, str(error)) from None
 
 
 # -- placement --------------------------------------------------------------------------------

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import random
 import struct
+import zlib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -20,6 +21,8 @@ from acphys.dat.landblock_info import unpack_landblock_info
 from acphys.dat.motion import unpack_animation
 from acphys.dat.records import unpack_landblock, unpack_region, unpack_setup
 from dat_support import (
+    BLOCK,
+    Writer,
     animation_record,
     bld_portal_bytes,
     box_gfxobj_record,
@@ -127,5 +130,91 @@ def test_a_damaged_dat_file_reads_or_raises_dat_error(tmp_path: Path) -> None:
                     dat.read(entry.object_id)
         except DatError as error:
             assert str(path) in str(error)
+        except Exception as error:  # pragma: no cover
+            raise AssertionError(f"trial {trial}: {type(error).__name__}: {error}") from error
+
+
+@pytest.mark.parametrize("kind", list(RECORDS))
+def test_every_dword_of_a_record_made_absurd_unpacks_or_raises_dat_error(kind: str) -> None:
+    """Each dword in turn set to a huge count, a huge float or a NaN: never a crash, a hang or a
+    huge allocation (a count is checked against the bytes left before anything is made)."""
+    data, unpack = RECORDS[kind]
+    for at in range(0, len(data) - 3, 4):
+        for value in (0xFFFFFFFF, 0x7FFFFFFF, 0x00100000, 0x7F800000, 0x7FC00000, 0x7E967699):
+            damaged = data[:at] + struct.pack("<I", value) + data[at + 4 :]
+            try:
+                unpack(damaged)
+            except DatError:
+                pass
+            except Exception as error:  # pragma: no cover
+                raise AssertionError(
+                    f"{kind} at byte {at} = {value:#x}: {type(error).__name__}: {error}"
+                ) from error
+
+
+def _three_level_dat(tmp_path: Path) -> tuple[bytes, list[int], list[int]]:
+    """A DAT of 125 records (every third compressed) under a root, two middle nodes and six
+    leaves of 20; its bytes, every block offset and every node offset."""
+    writer = Writer()
+    entries = []
+    for index in range(125):
+        data = struct.pack("<I", index) * (1 + index % 70)
+        if index % 3 == 0:
+            data = struct.pack("<I", len(data)) + zlib.compress(data)
+        entries.append(writer.entry(0x0A000000 + index, data, bitfield=(2 << 16) | int(index % 3 == 0)))
+    leaves = [writer.store(Writer.node([0], entries[i * 21 : i * 21 + 20])) for i in range(6)]
+    separators = [entries[i * 21 + 20] for i in range(5)]  # entries 20, 41, 62, 83, 104
+    middles = [
+        writer.store(Writer.node(leaves[:3], separators[:2])),
+        writer.store(Writer.node(leaves[3:], separators[3:])),
+    ]
+    root = writer.store(Writer.node(middles, [separators[2]]))
+    path = writer.write(tmp_path / "tree.dat", root)
+    with DatFile(path) as dat:
+        assert list(dat.ids()) == [0x0A000000 + i for i in range(125)]
+    return path.read_bytes(), sorted(writer.blocks), [*leaves, *middles, root]
+
+
+def test_a_dat_with_damaged_links_children_and_sizes_reads_or_raises_dat_error(tmp_path: Path) -> None:
+    """Block links and node children pointed at other blocks, at themselves, at the header,
+    past the end or marked free; header fields, entry sizes and counts changed; blocks moved:
+    every damaged file opens, lists and reads or raises a DatError naming it, quickly."""
+    image, blocks, nodes = _three_level_dat(tmp_path)
+    rng = random.Random(13)
+    path = tmp_path / "damaged.dat"
+    for trial in range(250):
+        raw = bytearray(image)
+        for _ in range(rng.randint(1, 3)):
+            target = rng.choice(
+                (0, 0x10, 0x3FF, len(raw), 0x7FFFFFFF, 0xFFFFFFFF, rng.choice(blocks), rng.choice(nodes))
+            ) | rng.choice((0, 0, 0, 0x80000000))
+            kind = rng.randrange(5)
+            if kind == 0:  # a block's link
+                at = rng.choice(blocks)
+            elif kind == 1:  # a node's child or entry count (the dwords after its link)
+                at = rng.choice(nodes) + 4 + 4 * rng.randrange(63)
+            elif kind == 2:  # a header field
+                at = 0x140 + 4 * rng.randrange(15)
+            elif kind == 3:  # an entry's offset or size, in some node's chain of 252-byte payloads
+                byte = 252 + 24 * rng.randrange(20) + rng.choice((8, 12))
+                at = rng.choice(nodes) + byte // 252 * BLOCK + 4 + byte % 252
+                target = rng.choice((target, rng.randrange(1 << 32)))
+            else:  # a block copied over another
+                source, dest = rng.choice(blocks), rng.choice(blocks)
+                raw[dest : dest + BLOCK] = raw[source : source + BLOCK]
+                continue
+            if at + 4 <= len(raw):
+                struct.pack_into("<I", raw, at, target & 0xFFFFFFFF)
+        path.write_bytes(bytes(raw))
+        try:
+            with DatFile(path) as dat:
+                for entry in list(dat.entries()):
+                    try:
+                        dat.read(entry.object_id)
+                    except DatError as error:
+                        assert str(path) in str(error)
+                dat.lookup(0x0A000040)
+        except DatError as error:
+            assert str(path) in str(error) and "\n" not in str(error)
         except Exception as error:  # pragma: no cover
             raise AssertionError(f"trial {trial}: {type(error).__name__}: {error}") from error

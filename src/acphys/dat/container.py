@@ -15,11 +15,18 @@ Layout (``/work/ref/D/07-dat-resources.md`` sections 1-2, checked against the co
   bytes ``{bitfield (bit 0 compressed, bits 16-31 version), id, offset, size, date,
   iteration}``. ``children[0] == 0`` marks a leaf.
 - A compressed record is a dword of uncompressed size and a zlib stream.
+
+Damaged files are refused with a DatError naming the file and the offset: non-regular files
+before any read, block chains that loop or leave the file, directories that loop, nest deeper or
+hold more nodes than a real DAT can, and records larger than :data:`MAX_RECORD_SIZE` or than
+they declare (inflated with that bound, never in full first).
 """
 
 from __future__ import annotations
 
 import itertools
+import os
+import stat
 import struct
 import zlib
 from collections.abc import Iterator
@@ -28,6 +35,8 @@ from pathlib import Path
 from types import TracebackType
 from typing import BinaryIO
 
+from acphys.inputs import one_line
+
 #: ``DiskFileInfo_t`` file offset and size (acclient.c:651034 reads 0x50 bytes at 320).
 HEADER_OFFSET = 0x140
 HEADER_SIZE = 0x50
@@ -35,6 +44,10 @@ HEADER_SIZE = 0x50
 MAGIC = 0x5442
 #: The first data block (``CreateDataFile`` sets ``firstFree_ = 1024``).
 DATA_START = 1024
+#: The smallest block size read. Retail's DATs use 256-byte (cell) and 1,024-byte (portal, local)
+#: blocks; a few bytes a block would make every record a chain of millions of reads (and the
+#: chain's loop check as large), so a header under 64 is taken as damaged.
+MIN_BLOCK_SIZE = 64
 #: A next-block link with this bit set names a free block (acclient.c:650759).
 FREE_BLOCK = 0x80000000
 #: ``BTNode``: 62 children, an entry count, 61 entries of 24 bytes = 1716 bytes.
@@ -44,10 +57,24 @@ ENTRY_SIZE = 24
 NODE_SIZE = NODE_BRANCHES * 4 + 4 + NODE_MAX_ENTRIES * ENTRY_SIZE
 #: ``DiskController::Decompress`` refuses records shorter than this (acclient.c:647382).
 MIN_COMPRESSED_SIZE = 0x10
+#: The deepest directory read. The node layout is a textbook B-tree of minimum degree 31 (62
+#: children, 61 entries), which keeps every node but the root at least half full, so level k
+#: holds at least 2 * 31**(k - 2) nodes of 1,716 bytes. The 32-bit offsets cap a DAT at 4 GiB,
+#: some 2.5 million nodes: enough for depth 6 (1.8 million at level 6), not 7 (57 million).
+#: 16 leaves room for a writer that balances less well and stops a damaged chain of nodes.
+MAX_DIRECTORY_DEPTH = 16
+#: The largest record read, stored or inflated: 16 MiB. The records acphys reads (setups,
+#: GfxObjs, animations, motion tables, environments, cells, landblocks, the region) are far
+#: smaller (a landblock is 252 bytes); the bound keeps a damaged size, or a small zlib stream that
+#: inflates a thousandfold, from taking gigabytes (parsed, a record takes up to some 25 times its
+#: bytes in Python objects, so 16 MiB stays well under 1 GB).
+MAX_RECORD_SIZE = 16 * 1024 * 1024
 
 #: ``data_set_lm`` values (``DATFILE_TYPE``, acclient.h:3116).
 DATA_SETS = {1: "portal", 2: "cell", 3: "local"}
 
+#: Read-only, without waiting for a FIFO's writer or taking a terminal (where the OS has these).
+_OPEN_FLAGS = os.O_RDONLY | sum(getattr(os, name, 0) for name in ("O_NONBLOCK", "O_NOCTTY", "O_BINARY"))
 _HEADER = struct.Struct("<15I16sI")
 _ENTRY = struct.Struct("<6I")
 _U32 = struct.Struct("<I")
@@ -128,12 +155,14 @@ class DatFile:
 
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
-        self._file: BinaryIO = open(self.path, "rb")  # noqa: SIM115 - closed by close()/__exit__
+        self._file: BinaryIO = _open_regular(self.path)
         try:
             self._size = self._file.seek(0, 2)
             self.header = self._read_header()
             self._nodes: dict[int, DatNode] = {}
-            self.root = self.node(self.header.btree_root)
+            #: Distinct nodes take distinct bytes: more than this many is a damaged directory.
+            self._max_nodes = self._size // NODE_SIZE
+            self.root = self._root()
         except BaseException:
             self._file.close()
             raise
@@ -153,12 +182,18 @@ class DatFile:
         where = f" at offset {offset:#x}" if offset is not None else ""
         return DatError(f"{self.path}{where}: {message}")
 
-    def _read_at(self, offset: int, size: int) -> bytes:
-        """``size`` bytes at ``offset``, or a DatError if the file ends first (a failed SyncRead)."""
+    def _read_at(self, offset: int, size: int, lead: str = "") -> bytes:
+        """``size`` bytes at ``offset``, or a DatError (``lead`` first) if the file ends first (a
+        failed SyncRead)."""
         if offset + size > self._size:
-            raise self._error(f"file truncated: needs {size} bytes, the file ends at {self._size:#x}", offset)
+            raise self._error(
+                f"{lead}file truncated: needs {size} bytes, the file ends at {self._size:#x}", offset
+            )
         self._file.seek(offset)
-        return self._file.read(size)
+        data = self._file.read(size)
+        if len(data) < size:  # the file shrank since it was opened
+            raise self._error(f"{lead}file truncated: needs {size} bytes, read {len(data)}", offset)
+        return data
 
     def _read_header(self) -> DatHeader:
         """Read and check ``DiskFileInfo_t``.
@@ -173,19 +208,40 @@ class DatFile:
         header = DatHeader(*fields[:11], bool(fields[11] & 0xFF), *fields[12:])  # use_lru_fm: a bool + 3 pad
         if header.magic != MAGIC:
             raise self._error(f"bad magic {header.magic:#06x} (a DAT file has {MAGIC:#06x})", HEADER_OFFSET)
-        if header.block_size <= 4:
-            raise self._error(f"bad block size {header.block_size} (at most the link)", HEADER_OFFSET)
+        if header.block_size < MIN_BLOCK_SIZE:
+            raise self._error(
+                f"bad block size {header.block_size} (under {MIN_BLOCK_SIZE}, MIN_BLOCK_SIZE)", HEADER_OFFSET
+            )
         return header
 
-    def read_chain(self, offset: int, size: int) -> bytes:
-        """The ``size`` bytes of the block chain that starts at ``offset``.
+    def _root(self) -> DatNode:
+        """The directory's root node, at the header's ``btree_root``."""
+        self._check_node_offset(self.header.btree_root, "the directory root", HEADER_OFFSET)
+        return self.node(self.header.btree_root)
+
+    def _check_node_offset(self, offset: int, what: str, at: int) -> None:
+        """A DatError (at offset ``at``) unless ``offset``, where ``what`` is, is in a data block."""
+        if offset < DATA_START:
+            message = f"{what} is at {offset:#x}, inside the header (data starts at {DATA_START:#x})"
+            raise self._error(message, at)
+        if offset >= self._size:
+            message = f"file truncated: {what} is at {offset:#x}, past its end at {self._size:#x}"
+            raise self._error(message, at)
+
+    def read_chain(self, offset: int, size: int, what: str = "") -> bytes:
+        """The ``size`` bytes of the block chain that starts at ``offset``; ``what`` (a record, a
+        directory node) starts the error messages.
 
         Each block gives ``block_size - 4`` payload bytes after its link; the chain must end (link
         0) exactly when the bytes do: retail fails the read if the chain is longer or shorter, or
-        reaches a free block. A chain that comes back to a block it already visited is a loop.
+        reaches a free block. A chain that comes back to a block it already visited is a loop;
+        one that links into the header or past the end of the file is damaged.
 
         Retail: CLBlockAllocator::Load_Data @ 0x006744E0 (acclient.c:650710)
         """
+        lead = f"{what}: " if what else ""
+        if size > self._size:
+            raise self._error(f"{lead}{size} bytes, more than the whole file ({self._size})", offset)
         payload = self.header.block_size - 4
         parts: list[bytes] = []
         remaining = size
@@ -193,31 +249,50 @@ class DatFile:
         seen: set[int] = set()
         while remaining > 0:
             if block == 0:
-                raise self._error(f"block chain ends after {size - remaining} of {size} bytes", offset)
+                raise self._error(f"{lead}block chain ends after {size - remaining} of {size} bytes", offset)
+            if block < DATA_START:
+                raise self._error(
+                    f"{lead}block chain reaches block {block:#x}, inside the header (data blocks "
+                    f"start at {DATA_START:#x})",
+                    offset,
+                )
+            if block >= self._size:
+                raise self._error(
+                    f"{lead}file truncated: the block chain reaches block {block:#x}, the file ends at "
+                    f"{self._size:#x}",
+                    offset,
+                )
             if block in seen:
-                raise self._error(f"loop in the block chain: block {block:#x} comes round again", offset)
+                message = f"{lead}loop in the block chain: block {block:#x} comes round again"
+                raise self._error(message, offset)
             seen.add(block)
             take = min(payload, remaining)
-            data = self._read_at(block, 4 + take)
+            data = self._read_at(block, 4 + take, lead)
             next_block = _U32.unpack_from(data)[0]
             parts.append(data[4:])
             remaining -= take
             if next_block & FREE_BLOCK:
-                raise self._error(f"block chain reaches a free block after block {block:#x}", offset)
+                raise self._error(f"{lead}block chain reaches a free block after block {block:#x}", offset)
             block = next_block
         if block != 0:
-            raise self._error(f"block chain continues past the {size} bytes it holds (to {block:#x})", offset)
+            raise self._error(
+                f"{lead}block chain continues past the {size} bytes it holds (to {block:#x})", offset
+            )
         return b"".join(parts)
 
     def node(self, offset: int) -> DatNode:
-        """The directory node stored at ``offset``.
+        """The directory node stored at ``offset`` (read once, then kept).
 
         Retail: BTree::FindNode @ 0x00672320 (acclient.c:648770)
         """
         cached = self._nodes.get(offset)
-        if cached is not None:
-            return cached
-        data = self.read_chain(offset, NODE_SIZE)
+        if cached is None:
+            cached = self._nodes[offset] = self._read_node(offset)
+        return cached
+
+    def _read_node(self, offset: int) -> DatNode:
+        """Read and check the directory node at ``offset``."""
+        data = self.read_chain(offset, NODE_SIZE, f"directory node {offset:#x}")
         children = struct.unpack_from(f"<{NODE_BRANCHES}I", data)
         count = _U32.unpack_from(data, NODE_BRANCHES * 4)[0]
         if count > NODE_MAX_ENTRIES:
@@ -231,9 +306,36 @@ class DatFile:
                     f"{after.object_id:#010x})",
                     offset,
                 )
-        node = DatNode(offset, children, entries)
-        self._nodes[offset] = node
-        return node
+        return DatNode(offset, children, entries)
+
+    def _child(self, node: DatNode, index: int, depth: int, visited: set[int], cache: bool) -> DatNode:
+        """Child ``index`` of ``node``, which is at ``depth`` (the root is 1); ``visited`` holds
+        the nodes reached so far, which the child must not be one of (a loop, or a node shared by
+        two parents). Past :data:`MAX_DIRECTORY_DEPTH`, or past as many nodes as the file can
+        hold, the directory is damaged. ``cache`` keeps the node (lookups do; walks read the
+        whole directory, which need not stay in memory)."""
+        offset = node.children[index]
+        if depth >= MAX_DIRECTORY_DEPTH:
+            raise self._error(
+                f"directory deeper than {MAX_DIRECTORY_DEPTH} levels (MAX_DIRECTORY_DEPTH): node "
+                f"{node.offset:#x} at depth {depth} has children",
+                node.offset,
+            )
+        if offset in visited:
+            raise self._error(
+                f"loop in the directory: node {node.offset:#x} names node {offset:#x} (child {index}), "
+                "which is reached twice",
+                node.offset,
+            )
+        if len(visited) >= self._max_nodes:
+            raise self._error(
+                f"directory has more than the {self._max_nodes} nodes of {NODE_SIZE} bytes a file of "
+                f"{self._size} bytes holds",
+                node.offset,
+            )
+        self._check_node_offset(offset, f"child {index} of directory node {node.offset:#x}", node.offset)
+        visited.add(offset)
+        return self.node(offset) if cache else self._nodes.get(offset) or self._read_node(offset)
 
     def lookup(self, object_id: int) -> DatEntry | None:
         """The directory entry of ``object_id``, or None: a binary search in each node, descending
@@ -242,18 +344,14 @@ class DatFile:
         Retail: BTree::Search @ 0x006731C0 (acclient.c:649568)
         """
         node = self.root
-        visited: set[int] = set()
+        visited = {node.offset}
         while True:
             index = _insertion_point(node.entries, object_id)
             if index < len(node.entries) and node.entries[index].object_id == object_id:
                 return node.entries[index]
             if node.is_leaf:
                 return None
-            visited.add(node.offset)
-            child = node.children[index]
-            if child in visited:
-                raise self._error(f"loop in the directory: node {child:#x} comes round again", node.offset)
-            node = self.node(child)
+            node = self._child(node, index, len(visited), visited, cache=True)
 
     def entry(self, object_id: int) -> DatEntry:
         """The directory entry of ``object_id``, or a DatError naming the missing id."""
@@ -263,56 +361,119 @@ class DatFile:
         return found
 
     def read(self, object_id: int) -> bytes:
-        """The bytes of record ``object_id``, decompressed when its entry says so.
+        """The bytes of record ``object_id``, decompressed when its entry says so; a record over
+        :data:`MAX_RECORD_SIZE`, stored or inflated, is refused.
 
         Retail: DiskController::LoadDataEx @ 0x00670BC0 (acclient.c:647425)
         """
         found = self.entry(object_id)
-        data = self.read_chain(found.offset, found.size)
+        what = f"record {object_id:#010x}"
+        if found.size > MAX_RECORD_SIZE:
+            raise self._error(
+                f"{what} is {found.size} bytes, over the {MAX_RECORD_SIZE}-byte limit (MAX_RECORD_SIZE)",
+                found.offset,
+            )
+        data = self.read_chain(found.offset, found.size, what)
         return self._decompress(found, data) if found.compressed else data
 
     def _decompress(self, found: DatEntry, data: bytes) -> bytes:
-        """A dword of uncompressed size, then zlib.
+        """A dword of uncompressed size, then zlib, inflated to at most that size (one byte more
+        shows a stream that would go on).
 
         Retail: DiskController::Decompress @ 0x00670A80 (acclient.c:647366)
         """
+        what = f"record {found.object_id:#010x}"
         if len(data) < MIN_COMPRESSED_SIZE:
             raise self._error(
-                f"compressed record {found.object_id:#010x} is {len(data)} bytes (at least "
-                f"{MIN_COMPRESSED_SIZE})",
-                found.offset,
+                f"compressed {what} is {len(data)} bytes (at least {MIN_COMPRESSED_SIZE})", found.offset
             )
         expected = _U32.unpack_from(data)[0]
-        try:
-            plain = zlib.decompress(data[4:])
-        except zlib.error as error:
-            message = f"record {found.object_id:#010x} does not decompress: {error}"
-            raise self._error(message, found.offset) from None
-        if len(plain) != expected:
+        if expected > MAX_RECORD_SIZE:
             raise self._error(
-                f"record {found.object_id:#010x} decompresses to {len(plain)} bytes, not {expected}",
+                f"{what} declares {expected} bytes uncompressed, over the {MAX_RECORD_SIZE}-byte limit "
+                "(MAX_RECORD_SIZE)",
                 found.offset,
             )
+        inflater = zlib.decompressobj()
+        try:
+            plain = inflater.decompress(memoryview(data)[4:], expected + 1)
+        except zlib.error as error:
+            raise self._error(f"{what} does not decompress: {error}", found.offset) from None
+        if len(plain) > expected:
+            message = f"{what} decompresses to more than the {expected} bytes it declares"
+            raise self._error(message, found.offset)
+        if not inflater.eof:
+            raise self._error(
+                f"{what} does not decompress: its zlib stream ends early ({len(plain)} of {expected} bytes)",
+                found.offset,
+            )
+        if len(plain) != expected:
+            raise self._error(f"{what} decompresses to {len(plain)} bytes, not {expected}", found.offset)
         return plain
 
     def entries(self) -> Iterator[DatEntry]:
-        """Every directory entry, in id order (an in-order walk of the B-tree)."""
-        yield from self._walk(self.root, set())
-
-    def _walk(self, node: DatNode, visited: set[int]) -> Iterator[DatEntry]:
-        if node.offset in visited:
-            raise self._error(f"loop in the directory: node {node.offset:#x} is reached twice", node.offset)
-        visited.add(node.offset)
-        for index, found in enumerate(node.entries):
-            if not node.is_leaf:
-                yield from self._walk(self.node(node.children[index]), visited)
-            yield found
-        if not node.is_leaf:
-            yield from self._walk(self.node(node.children[len(node.entries)]), visited)
+        """Every directory entry, in id order: an in-order walk of the B-tree with a stack of
+        (node, next child, depth), each node reached once (see :meth:`_child`); ids that do not
+        rise from one entry to the next are a damaged directory."""
+        visited = {self.root.offset}
+        stack: list[tuple[DatNode, int, int]] = [(self.root, 0, 1)]
+        previous: DatEntry | None = None
+        while stack:
+            node, index, depth = stack.pop()
+            if node.is_leaf:
+                following: tuple[DatEntry, ...] = node.entries
+            else:
+                following = node.entries[index - 1 : index] if index else ()
+                if index < len(node.entries):
+                    stack.append((node, index + 1, depth))
+                stack.append((self._child(node, index, depth, visited, cache=False), 0, depth + 1))
+            for found in following:
+                if previous is not None and found.object_id <= previous.object_id:
+                    raise self._error(
+                        f"directory out of order: {found.object_id:#010x} in node {node.offset:#x} "
+                        f"follows {previous.object_id:#010x}",
+                        node.offset,
+                    )
+                previous = found
+                yield found
 
     def ids(self) -> Iterator[int]:
         """Every record id, in order."""
         return (found.object_id for found in self.entries())
+
+
+def _open_regular(path: Path) -> BinaryIO:
+    """``path`` opened for reading if it is a regular file, else a DatError: a FIFO would block
+    (the open, or the reads) until something writes to it, and a device such as /dev/zero never
+    ends. The open itself does not wait (``O_NONBLOCK``) and the type is the open file's, so it
+    is the file that is checked that is read. A missing file is ``FileNotFoundError``, as from
+    ``open``."""
+    try:
+        fd = os.open(path, _OPEN_FLAGS)
+    except ValueError:  # os.open's "embedded null byte"
+        raise DatError(f"{one_line(str(path))}: a path cannot hold a NUL byte") from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            raise DatError(f"{path}: not a regular file ({_file_kind(mode)}); a DAT must be a file")
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def _file_kind(mode: int) -> str:
+    """What a non-regular file is, for the error message."""
+    for test, kind in (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISFIFO, "a FIFO"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    ):
+        if test(mode):
+            return kind
+    return f"file mode {stat.filemode(mode)}"
 
 
 def _insertion_point(entries: tuple[DatEntry, ...], object_id: int) -> int:

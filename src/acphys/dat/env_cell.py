@@ -199,7 +199,7 @@ def _node(reader: Reader, polygons: list[Polygon], tree_type: int, tag: int) -> 
             "node tag (BPIN, BPnN, BPIn, BPnn, BpIN, BpnN, LEAF, PORT)"
         )
     normal = reader.vector()
-    plane = Plane(normal, reader.f32())
+    plane = Plane(normal, reader.coordinate())
     pos = _child(reader, polygons, tree_type) if children[0] else None
     neg = _child(reader, polygons, tree_type) if children[1] else None
     if tree_type == CELL_BSP:
@@ -216,7 +216,7 @@ def _portal(reader: Reader, polygons: list[Polygon], tree_type: int) -> BSPNode:
     Retail: BSPPORTAL::UnPackPortal @ 0x0053DB70 (acclient.c:364645)
     """
     normal = reader.vector()
-    plane = Plane(normal, reader.f32())
+    plane = Plane(normal, reader.coordinate())
     pos = _child(reader, polygons, tree_type)
     neg = _child(reader, polygons, tree_type)
     if tree_type != DRAWING_BSP:
@@ -355,11 +355,14 @@ def make_env_cell(record: EnvCellRecord, env_record: EnvironmentRecord, environm
             raise DatError(
                 f"{what}: portal {number} names polygon {stored.poly_id}, not a portal of its structure"
             )
-        portals.append(
-            CellPortal.unpack(
-                record.block_mask, stored.flags, polygon, stored.other_cell, stored.other_portal_id
+        try:
+            portals.append(
+                CellPortal.unpack(
+                    record.block_mask, stored.flags, polygon, stored.other_cell, stored.other_portal_id
+                )
             )
-        )
+        except ValueError as error:
+            raise DatError(f"{what}: portal {number}: {error}") from None
     return EnvCell(record.cell_id, structure, record.frame, portals, environment)
 
 

@@ -184,7 +184,7 @@ def _node(reader: Reader, polygons: list[Polygon], tag: int) -> BSPNode:
             "physics node tag (BPIN, BPnN, BPIn, BPnn, BpIN, BpnN, LEAF)"
         )
     normal = reader.vector()
-    plane = Plane(normal, reader.f32())
+    plane = Plane(normal, reader.coordinate())
     pos = _child(reader, polygons) if children[0] else None
     neg = _child(reader, polygons) if children[1] else None
     return BSPNode(plane, pos, neg, reader.sphere(), type=tag)

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 from acphys.dat.container import DatError
 from acphys.dat.records import Reader
-from acphys.math.cell_id import adjust_to_outside, format_cell_id
+from acphys.math.cell_id import FIRST_ENV_CELL, adjust_to_outside, format_cell_id
 from acphys.math.frame import Frame
 from acphys.math.position import Position
 from acphys.physics_obj import PhysicsObj
@@ -95,8 +95,18 @@ class LandBlockInfoRecord:
 
 
 def _bld_portal(reader: Reader, block_mask: int) -> BldPortalRecord:
-    """Retail: CBldPortal::UnPack @ 0x0053BC40 (acclient.c:362498)"""
+    """A portal into the building's env cells (a cell number below 0x0100 is a DatError: it
+    names a land cell, which no building portal leads into).
+
+    Retail: CBldPortal::UnPack @ 0x0053BC40 (acclient.c:362498)
+    """
+    start = reader.pos
     flags, other_cell, other_portal = reader.unpack("HHh")
+    if other_cell < FIRST_ENV_CELL:
+        raise DatError(
+            f"{reader.what}: the building portal at byte {start} leads into cell {int(other_cell):#06x}, "
+            f"not an env cell ({FIRST_ENV_CELL:#06x} and up)"
+        )
     num_stabs = int(reader.unpack("H")[0])
     stabs = [block_mask | int(v) for v in reader.unpack(f"{num_stabs}H")]
     reader.align()

@@ -23,6 +23,10 @@ ANIM_HAS_POS_FRAMES = 0x1
 #: ``MotionData`` flag byte: bit 0 a velocity vector follows the animations, bit 1 an omega.
 MOTION_HAS_VELOCITY = 0x1
 MOTION_HAS_OMEGA = 0x2
+#: The fastest animation framerate read, frames a second either way (a negative rate plays
+#: backwards). Retail's animations play at tens of frames a second; a sequence steps through
+#: every frame it passes, hooks and all, so a damaged rate (1e7) would stall the simulation.
+MAX_FRAMERATE = 1000.0
 #: ``AnimPartChange`` part ids are GfxObj ids (``Unpack_AsDataIDOfKnownType(0x1000000, ...)``).
 GFXOBJ_ID_TYPE = 0x01000000
 
@@ -176,6 +180,11 @@ def _anim_data(reader: Reader, load_animation: Callable[[int], Animation]) -> An
     anim_id = reader.u32()
     low_frame, high_frame = (int(v) for v in reader.unpack("2i"))
     framerate = reader.f32()
+    if abs(framerate) > MAX_FRAMERATE:
+        raise DatError(
+            f"{reader.what}: animation {anim_id:#010x} plays at {framerate:.6g} frames a second, over "
+            f"{MAX_FRAMERATE:g} (MAX_FRAMERATE)"
+        )
     animation = load_animation(anim_id)
     try:
         return AnimData(animation, low_frame, high_frame, framerate)

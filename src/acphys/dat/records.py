@@ -4,10 +4,16 @@ as its height table) and the ``CLandBlock`` terrain record (0xXXYYFFFF).
 Every record starts with its DID (``DBObj::Serialize``; none of these types is "categorized", so
 no data-category dword follows), then the class's ``UnPack`` body. Multi-byte values are
 little-endian; floats are IEEE single precision (read exactly, as Python floats).
+
+:class:`Reader`, which every record reader here and in the sibling modules uses, refuses what
+only a damaged record holds and the engine could not survive: a float that is NaN or infinite,
+a coordinate or length beyond :data:`MAX_COORDINATE`, a frame whose quaternion is no rotation
+(:data:`MAX_QUATERNION_NORM2`), and a count larger than the bytes left could hold.
 """
 
 from __future__ import annotations
 
+import math
 import struct
 from dataclasses import dataclass
 
@@ -29,6 +35,17 @@ SETUP_HAS_PHYSICS_BSP = 0x8
 REGION_VERSION = 3
 #: The region record's id.
 REGION_ID = 0x13000000
+#: The largest coordinate or length a record may store, in metres. Positions are model-, cell- or
+#: landblock-local (a landblock is 192 m, the whole world 255 of them), so no retail value comes
+#: near 10 km; a damaged exponent (1e38) would make a body's or object's box span the world and
+#: the land cells it covers past counting.
+MAX_COORDINATE = 10_000.0
+#: The largest squared norm of a stored frame's quaternion. A rotation's is 1 (to float32
+#: rounding); retail's ``Frame::IsValid`` allows 1 +- 0.001 but unpacking ignores its answer, so
+#: acphys refuses only quaternions that are no rotation at all: ``Frame.cache``'s matrix grows
+#: with the squared norm, and past 2 it would stretch what the frame places (a damaged exponent
+#: makes that a box kilometres across).
+MAX_QUATERNION_NORM2 = 2.0
 
 
 class Reader:
@@ -52,7 +69,14 @@ class Reader:
         return chunk
 
     def unpack(self, fmt: str) -> tuple[int | float, ...]:
-        return struct.unpack("<" + fmt, self.take(struct.calcsize("<" + fmt)))
+        """Values of struct format ``fmt``; a float that is NaN or infinite is a DatError (no
+        physics quantity is, and the engine would only spread it)."""
+        start = self.pos
+        values = struct.unpack("<" + fmt, self.take(struct.calcsize("<" + fmt)))
+        if "f" in fmt and not all(map(math.isfinite, values)):
+            bad = next(v for v in values if not math.isfinite(v))
+            raise DatError(f"{self.what}: the values at byte {start} hold {bad}; a DAT's floats are finite")
+        return values
 
     def u32(self) -> int:
         return int(self.unpack("I")[0])
@@ -67,14 +91,31 @@ class Reader:
             raise DatError(f"{self.what}: {name} count {value} at byte {self.pos - 4} overruns the record")
         return value
 
+    def coordinates(self, count: int) -> list[float]:
+        """``count`` floats that are positions or lengths: each within :data:`MAX_COORDINATE`."""
+        start = self.pos
+        values = [float(v) for v in self.unpack(f"{count}f")]
+        if any(abs(v) > MAX_COORDINATE for v in values):
+            bad = next(v for v in values if abs(v) > MAX_COORDINATE)
+            raise DatError(
+                f"{self.what}: the coordinates at byte {start} hold {bad:.6g}, beyond the "
+                f"{MAX_COORDINATE:g} m a DAT stores (MAX_COORDINATE)"
+            )
+        return values
+
+    def coordinate(self) -> float:
+        """One position or length (:meth:`coordinates`)."""
+        return self.coordinates(1)[0]
+
     def vector(self) -> Vector3:
-        x, y, z = self.unpack("3f")
-        return Vector3(float(x), float(y), float(z))
+        """A position, a direction or an extent (:meth:`coordinates`)."""
+        x, y, z = self.coordinates(3)
+        return Vector3(x, y, z)
 
     def sphere(self) -> Sphere:
         """Retail: CSphere::UnPack @ 0x0051FD20 (acclient.c:334267)"""
         center = self.vector()
-        return Sphere(center, self.f32())
+        return Sphere(center, self.coordinate())
 
     def frame(self) -> Frame:
         """Origin, then qw qx qy qz (28 bytes).
@@ -82,8 +123,15 @@ class Reader:
         Retail: AFrame::UnPack @ 0x005A9FB0 (acclient.c:467618)
         """
         origin = self.vector()
-        qw, qx, qy, qz = self.unpack("4f")
-        return Frame(origin, float(qw), float(qx), float(qy), float(qz))
+        start = self.pos
+        qw, qx, qy, qz = (float(v) for v in self.unpack("4f"))
+        norm2 = qw * qw + qx * qx + qy * qy + qz * qz
+        if norm2 > MAX_QUATERNION_NORM2:
+            raise DatError(
+                f"{self.what}: the quaternion at byte {start} has squared norm {norm2:.6g}, over "
+                f"{MAX_QUATERNION_NORM2} (MAX_QUATERNION_NORM2): not a rotation"
+            )
+        return Frame(origin, qw, qx, qy, qz)
 
     def align(self) -> None:
         """Skip to the next multiple of 4 (records start 4-aligned in retail's buffers)."""
@@ -214,10 +262,10 @@ def unpack_setup(data: bytes) -> SetupRecord:
     cylspheres = []
     for _ in range(reader.count(20, "cylsphere")):
         low_pt = reader.vector()
-        radius, height = reader.unpack("2f")
-        cylspheres.append(CylSphere(low_pt, float(radius), float(height)))
+        radius, height = reader.coordinates(2)
+        cylspheres.append(CylSphere(low_pt, radius, height))
     spheres = [reader.sphere() for _ in range(reader.count(16, "sphere"))]
-    height, radius, step_up, step_down = (float(v) for v in reader.unpack("4f"))
+    height, radius, step_up, step_down = reader.coordinates(4)
     sorting = reader.sphere()
     selection = reader.sphere()
     lights: dict[int, LightInfo] = {}

@@ -14,7 +14,12 @@ height) and height over time (``height``), with ``hit_ground``,
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+import re
+import sys
+import warnings
+from array import array
+from collections import Counter
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,7 +27,7 @@ from typing import Any
 from acphys.constants import BLOCK_LENGTH
 from acphys.math.cell_id import landblock_of
 from acphys.physics_obj import PhysicsObj
-from acphys.trace import TraceError, read_trace, step_record
+from acphys.trace import TraceError, brief, printable, read_trace, step_record
 
 #: The panels ``--view`` can pick; without it the figure has ``top`` and ``height``.
 VIEWS = ("top", "side", "height")
@@ -37,31 +42,106 @@ EVENT_MARKERS = {
 }
 
 
+#: The most samples a picture keeps, over all its bodies and event marks: more than a PNG panel
+#: or a terminal map can tell apart, in 32 MB of float64. A longer trace or run is drawn from
+#: every 2nd, 4th, ... record of its longest series, with a warning; the figures of ``view``
+#: still count every record.
+MAX_POINTS = 1_000_000
+#: The most bodies a picture reads: ten times the 10,000-body scenarios acphys builds and runs,
+#: and the most ``acphys bench`` drives. Each costs a few hundred bytes.
+MAX_BODIES = 100_000
+#: The longest body name a picture reads, in characters (a name is held once per body).
+MAX_NAME_LENGTH = 1000
+#: The most kinds of event (``collision`` for ``collision:pillar``) a picture counts: acphys
+#: writes about 25 (README "Traces").
+MAX_EVENT_KINDS = 64
+#: The largest magnitude of a number drawn (``t``, ``quantum``, ``origin``): the largest float32.
+#: acphys writes origins as float32 and no run's time comes near it; within it, every sum and
+#: difference the plot and the view take is a finite float64.
+MAX_MAGNITUDE = 3.4028234663852886e38
+#: The most bodies the legend names (each its own line); more are drawn as one collection.
+LEGEND_BODIES = 12
+#: How many characters of a name the legend, the table and the map show.
+SHOWN_NAME = 40
+
+
 class PlotError(ValueError):
     """A picture that cannot be made: an unknown body, nothing to draw, an unwritable file."""
 
 
-@dataclass
-class BodyPath:
-    """One body's samples, one per trace record, in the landblock-global frame."""
+def _floats() -> array[float]:
+    return array("d")
 
-    name: str
-    t: list[float] = field(default_factory=list)
-    quantum: list[float] = field(default_factory=list)
-    x: list[float] = field(default_factory=list)
-    y: list[float] = field(default_factory=list)
-    z: list[float] = field(default_factory=list)
-    contact: list[bool] = field(default_factory=list)
-    #: ``(sample index, event)`` for every event of every record, in order.
-    events: list[tuple[int, str]] = field(default_factory=list)
+
+@dataclass
+class Points:
+    """Samples ``(t, x, y, z)`` of one series: every ``stride``-th one added, and the latest.
+
+    ``stride`` starts at 1 (every sample) and doubles each time :meth:`thin` runs.
+    """
+
+    t: array[float] = field(default_factory=_floats)
+    x: array[float] = field(default_factory=_floats)
+    y: array[float] = field(default_factory=_floats)
+    z: array[float] = field(default_factory=_floats)
+    #: How many samples were added (kept or not).
+    added: int = 0
+    stride: int = 1
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def add(self, t: float, x: float, y: float, z: float) -> int:
+        """Add the latest sample; returns how many more samples are kept (0 or 1)."""
+        replace = self.added > 0 and (self.added - 1) % self.stride != 0  # the latest, off the stride
+        for values, value in ((self.t, t), (self.x, x), (self.y, y), (self.z, z)):
+            if replace:
+                values[-1] = value
+            else:
+                values.append(value)
+        self.added += 1
+        return 0 if replace else 1
+
+    def thin(self) -> int:
+        """Double the stride, keeping every other sample on it and the latest; returns how many went."""
+        before = len(self.t)
+        on_stride = before if (self.added - 1) % self.stride == 0 else before - 1
+        self.stride *= 2
+        keep_latest = (self.added - 1) % self.stride != 0
+        for name in ("t", "x", "y", "z"):
+            values = getattr(self, name)
+            kept = values[0:on_stride:2]
+            if keep_latest:
+                kept.append(values[-1])
+            setattr(self, name, kept)
+        return before - len(self.t)
+
+
+@dataclass
+class BodyPath(Points):
+    """One body's path: its samples in the landblock-global frame, and figures over every record."""
+
+    name: str = ""
+    #: Where the marked events (:data:`EVENT_MARKERS`) happened, by kind.
+    marks: dict[str, Points] = field(default_factory=dict)
+    #: Events by kind (``collision:pillar`` counts as ``collision``), over every record.
+    events: Counter[str] = field(default_factory=Counter)
+    #: Metres along the path, from the first record to the last (3-D, in the global frame).
+    distance: float = 0.0
+    #: The fastest the path moved between two records (m/s): root-motion walking counts.
+    max_speed: float = 0.0
+    #: Seconds of steps that ended in contact with something.
+    contact_time: float = 0.0
     #: The first and last records' cells and landblock-local origins, as the trace has them.
     first_cell: str = ""
     first_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
     last_cell: str = ""
     last_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
-    def __len__(self) -> int:
-        return len(self.t)
+    def series(self) -> Iterator[Points]:
+        """The path's samples and its marks."""
+        yield self
+        yield from self.marks.values()
 
 
 def event_kind(event: str) -> str:
@@ -75,53 +155,103 @@ def global_xy(cell_id: int, x: float, y: float) -> tuple[float, float]:
     return (block >> 8) * BLOCK_LENGTH + x, (block & 0xFF) * BLOCK_LENGTH + y
 
 
+def shown_name(name: str, limit: int = SHOWN_NAME) -> str:
+    """A name as a picture shows it: unprintable characters escaped, cut to ``limit`` characters."""
+    text = printable(name)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
 def _number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and abs(value) <= MAX_MAGNITUDE
+
+
+_BOUNDED = f"finite and within ±{MAX_MAGNITUDE:.2g} (the float32 range)"
+_CELL = re.compile(r"0x[0-9A-Fa-f]{1,8}")
 
 
 class PathCollector:
-    """Builds :class:`BodyPath` s from trace records, checking the keys a picture needs."""
+    """Builds :class:`BodyPath` s from trace records, checking the keys a picture needs.
+
+    It keeps at most :data:`MAX_POINTS` samples, thinning the longest series when it would hold more.
+    """
 
     def __init__(self) -> None:
         self.paths: dict[str, BodyPath] = {}
+        self._kinds: dict[str, str] = {}
+        self._kept = 0
 
     def add(self, record: dict[str, Any], where: str) -> None:
         """Add one record; ``where`` (``file:line``) prefixes any :class:`TraceError`."""
         t, body, quantum = record.get("t"), record.get("body"), record.get("quantum", 0.0)
         if not _number(t):
-            raise TraceError(f"{where}: t must be a number, got {t!r}")
+            raise TraceError(f"{where}: t must be a number, {_BOUNDED}, got {brief(t)}")
         if not isinstance(body, str):
-            raise TraceError(f"{where}: body must be a string, got {body!r}")
+            raise TraceError(f"{where}: body must be a string, got {brief(body)}")
         if not _number(quantum):
-            raise TraceError(f"{where}: quantum must be a number, got {quantum!r}")
+            raise TraceError(f"{where}: quantum must be a number, {_BOUNDED}, got {brief(quantum)}")
         cell = record.get("cell")
-        try:
-            cell_id = int(cell, 16) if isinstance(cell, str) else -1
-        except ValueError:
-            cell_id = -1
-        if not 0 <= cell_id <= 0xFFFFFFFF:
-            raise TraceError(f'{where}: cell must be a hex cell id like "0xA9B40021", got {cell!r}')
+        if not (isinstance(cell, str) and _CELL.fullmatch(cell)):
+            raise TraceError(f'{where}: cell must be a hex cell id like "0xA9B40021", got {brief(cell)}')
         origin = record.get("origin")
         if not (isinstance(origin, list) and len(origin) == 3 and all(_number(v) for v in origin)):
-            raise TraceError(f"{where}: origin must be 3 numbers, got {origin!r}")
+            raise TraceError(f"{where}: origin must be 3 numbers, {_BOUNDED}, got {brief(origin)}")
         transient = record.get("transient", [])
         events = record.get("events", [])
         for key, value in (("transient", transient), ("events", events)):
             if not (isinstance(value, list) and all(isinstance(item, str) for item in value)):
-                raise TraceError(f"{where}: {key} must be a list of strings, got {value!r}")
-        path = self.paths.get(body)
-        if path is None:
-            path = self.paths[body] = BodyPath(body, first_cell=cell, first_origin=tuple(origin))
-        gx, gy = global_xy(cell_id, origin[0], origin[1])
-        index = len(path.t)
-        path.t.append(float(t))
-        path.quantum.append(float(quantum))
-        path.x.append(gx)
-        path.y.append(gy)
-        path.z.append(float(origin[2]))
-        path.contact.append("contact" in transient)
-        path.events.extend((index, event) for event in events)
+                raise TraceError(f"{where}: {key} must be a list of strings, got {brief(value)}")
+        path = self.paths.get(body) or self._new_path(body, cell, origin, where)
+        gx, gy = global_xy(int(cell, 16), origin[0], origin[1])
+        t, z = float(t), float(origin[2])
+        if path.added:
+            step = math.dist((path.x[-1], path.y[-1], path.z[-1]), (gx, gy, z))
+            path.distance += step
+            if t > path.t[-1]:
+                path.max_speed = max(path.max_speed, step / (t - path.t[-1]))
+        if "contact" in transient:
+            path.contact_time += quantum
+        self._kept += path.add(t, gx, gy, z)
+        for kind, count in Counter(map(event_kind, events)).items():
+            kind = self._kind(kind, where)
+            path.events[kind] += count
+            if kind in EVENT_MARKERS:
+                marks = path.marks.get(kind) or path.marks.setdefault(kind, Points())
+                self._kept += marks.add(t, gx, gy, z)
         path.last_cell, path.last_origin = cell, tuple(origin)
+        if self._kept > MAX_POINTS:
+            self._thin()
+
+    def _new_path(self, body: str, cell: str, origin: list[float], where: str) -> BodyPath:
+        if len(body) > MAX_NAME_LENGTH:
+            raise TraceError(
+                f"{where}: a body name of {len(body)} characters; the limit is {MAX_NAME_LENGTH}"
+            )
+        if len(self.paths) == MAX_BODIES:
+            raise TraceError(f"{where}: more than {MAX_BODIES} bodies, the limit for a picture")
+        path = self.paths[body] = BodyPath(name=body, first_cell=cell, first_origin=tuple(origin))
+        return path
+
+    def _kind(self, kind: str, where: str) -> str:
+        """``kind``, one string object for all bodies; a new kind past the limit is refused."""
+        known = self._kinds.get(kind)
+        if known is None:
+            if len(self._kinds) == MAX_EVENT_KINDS:
+                raise TraceError(
+                    f"{where}: more than {MAX_EVENT_KINDS} kinds of event, the limit for a picture "
+                    f"(acphys writes about 25); the next is {brief(kind)}"
+                )
+            known = self._kinds[kind] = kind
+        return known
+
+    def _thin(self) -> None:
+        """Thin the longest series until the samples kept are at most half of :data:`MAX_POINTS`."""
+        series = [points for path in self.paths.values() for points in path.series()]
+        while self._kept > MAX_POINTS // 2:
+            mean = self._kept / len(series)
+            dropped = sum(points.thin() for points in series if len(points) >= mean and len(points) > 2)
+            if not dropped:
+                break
+            self._kept -= dropped
 
 
 def read_paths(trace: str | Path) -> dict[str, BodyPath]:
@@ -131,10 +261,11 @@ def read_paths(trace: str | Path) -> dict[str, BodyPath]:
     malformed trace, and for one with no records.
     """
     collector = PathCollector()
+    label = printable(str(trace))
     for line, record in read_trace(trace):
-        collector.add(record, f"{trace}:{line}")
+        collector.add(record, f"{label}:{line}")
     if not collector.paths:
-        raise TraceError(f"{trace}: the trace has no records")
+        raise TraceError(f"{label}: the trace has no records")
     return collector.paths
 
 
@@ -162,7 +293,7 @@ class PathRecorder:
                 body.observer = None
 
     def record_step(self, body: PhysicsObj, quantum: float) -> None:
-        self._collector.add(step_record(body, quantum), f"<run>:{body.name}")
+        self._collector.add(step_record(body, quantum), f"<run>:{printable(body.name)}")
 
 
 def parse_bodies(text: str | None) -> list[str] | None:
@@ -189,12 +320,20 @@ def select_bodies(paths: dict[str, BodyPath], names: Sequence[str] | None) -> li
 def check_output(output: str | Path) -> Path:
     """The picture's path, if it can be written there (checked before any work is done)."""
     path = Path(output)
+    label = printable(str(path))
     if path.is_dir():
-        raise PlotError(f"{path}: is a directory, not a PNG file")
+        raise PlotError(f"{label}: is a directory, not a PNG file")
+    if path.is_fifo() or path.is_socket():  # a pipe would block the write until someone reads it
+        raise PlotError(f"{label}: cannot write: not a regular file")
     parent = path.parent
     if not parent.is_dir():
-        raise PlotError(f"{path}: cannot write: no directory {str(parent)!r}")
+        raise PlotError(f"{label}: cannot write: no directory {printable(str(parent))!r}")
     return path
+
+
+def print_warning(message: str) -> None:
+    """Print a warning as the command line does: one ``acphys: warning:`` line on stderr."""
+    print(f"acphys: warning: {message}", file=sys.stderr)
 
 
 def write_plot(
@@ -203,25 +342,70 @@ def write_plot(
     bodies: Sequence[str] | None = None,
     view: str | None = None,
     title: str = "",
+    warn: Callable[[str], None] = print_warning,
 ) -> Path:
     """Draw the paths of ``bodies`` (default: all) to a PNG at ``output``; returns its path.
 
     ``view`` is one of :data:`VIEWS` for a single panel; by default the figure
-    has the paths from above and height over time side by side.
+    has the paths from above and height over time side by side. What the
+    picture leaves out (samples past :data:`MAX_POINTS`, characters the font
+    lacks) is told to ``warn`` once, by default as an ``acphys: warning:`` line
+    on stderr.
     """
     output = check_output(output)
-    figure = make_figure(paths, bodies, view, title)
-    try:
-        figure.savefig(output, format="png")
-    except OSError as error:
-        raise PlotError(f"{output}: cannot write: {error.strerror or error}") from None
+    label = printable(str(output))
+    with warnings.catch_warnings(record=True) as caught, _user_text_is_plain():
+        warnings.simplefilter("always")
+        figure = make_figure(paths, bodies, view, title)
+        try:
+            figure.savefig(output, format="png")
+        except OSError as error:
+            raise PlotError(f"{label}: cannot write: {error.strerror or error}") from None
+    thinned = [path for path in select_bodies(paths, bodies) if path.stride > 1]
+    if thinned:
+        warn(f"{label}: {thinning(thinned)}")
+    for message in _matplotlib_warnings(caught):
+        warn(f"{label}: {message}")
     return output
+
+
+def thinning(paths: Sequence[BodyPath]) -> str:
+    """What a warning says of paths drawn from part of their records (their stride is past 1)."""
+    longest = max(paths, key=lambda path: path.stride)
+    return (
+        f"the longest paths are drawn from 1 record in {longest.stride} ({shown_name(longest.name)!r} "
+        f"has {longest.added:,} records); a picture keeps at most {MAX_POINTS:,} samples"
+    )
+
+
+def _matplotlib_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
+    """matplotlib's warnings, each once and on one line; missing glyphs are one warning."""
+    messages = dict.fromkeys(printable(str(warning.message)) for warning in caught)
+    glyphs = [message for message in messages if _MISSING_GLYPH.match(message)]
+    found = [message for message in messages if message not in glyphs]
+    if glyphs:
+        found.append(f"{len(glyphs)} characters of the labels are not in the font: drawn as boxes")
+    return found
+
+
+_MISSING_GLYPH = re.compile(r"Glyph \d+ .* missing from")
+
+
+def _user_text_is_plain() -> Any:
+    """A matplotlib settings context in which no text is read as maths or LaTeX: the
+    names in a picture are the user's (``$x^$`` is a name, not a formula)."""
+    import matplotlib
+
+    return matplotlib.rc_context({"text.parse_math": False, "text.usetex": False})
 
 
 def make_figure(
     paths: dict[str, BodyPath], bodies: Sequence[str] | None = None, view: str | None = None, title: str = ""
 ) -> Any:
-    """The matplotlib ``Figure`` :func:`write_plot` saves (on an Agg canvas; pyplot is not used)."""
+    """The matplotlib ``Figure`` :func:`write_plot` saves (on an Agg canvas; pyplot is not used).
+
+    No text of the figure is read as maths, so a body named ``$x^$`` is drawn as it is named.
+    """
     if view is not None and view not in VIEWS:
         raise PlotError(f"--view must be one of {', '.join(VIEWS)}, got {view!r}")
     selected = select_bodies(paths, bodies)
@@ -233,48 +417,55 @@ def make_figure(
     except ImportError:  # pragma: no cover - matplotlib is a dependency
         raise PlotError("plotting needs matplotlib: pip install 'matplotlib>=3.7'") from None
 
-    views = DEFAULT_VIEWS if view is None else (view,)
-    figure = Figure(figsize=(6.5 * len(views), 6.0), dpi=100, layout="constrained")
-    FigureCanvasAgg(figure)
-    axes = figure.subplots(1, len(views), squeeze=False)[0]
-    colours = [f"C{index % 10}" for index in range(len(selected))]
-    for ax, panel in zip(axes, views, strict=True):
-        _draw_panel(ax, panel, selected, colours)
-    _legend(figure, selected, colours)
-    if title:
-        figure.suptitle(title)
+    with _user_text_is_plain():
+        views = DEFAULT_VIEWS if view is None else (view,)
+        figure = Figure(figsize=(6.5 * len(views), 6.0), dpi=100, layout="constrained")
+        FigureCanvasAgg(figure)
+        axes = figure.subplots(1, len(views), squeeze=False)[0]
+        colours = [f"C{index % 10}" for index in range(len(selected))]
+        for ax, panel in zip(axes, views, strict=True):
+            _draw_panel(ax, panel, selected, colours)
+        _legend(figure, selected, colours)
+        if title:
+            figure.suptitle(shown_name(title, limit=2 * SHOWN_NAME))
     return figure
 
 
-def _panel_data(panel: str, path: BodyPath) -> tuple[list[float], list[float]]:
+def _panel_data(panel: str, points: Points) -> tuple[array[float], array[float]]:
     if panel == "top":
-        return path.x, path.y
+        return points.x, points.y
     if panel == "side":
-        return path.x, path.z
-    return path.t, path.z
+        return points.x, points.z
+    return points.t, points.z
 
 
 def _draw_panel(ax: Any, panel: str, selected: list[BodyPath], colours: list[str]) -> None:
-    for path, colour in zip(selected, colours, strict=True):
-        xs, ys = _panel_data(panel, path)
-        if not xs:
-            continue
-        ax.plot(xs, ys, color=colour, linewidth=1.5, label=path.name)
-        ax.plot(xs[:1], ys[:1], marker="o", color=colour, markersize=5)  # where it starts
-        for kind, (_, marker, edge, size) in EVENT_MARKERS.items():
-            hits = [index for index, event in path.events if event_kind(event) == kind]
-            if hits:
-                ax.scatter(
-                    [xs[i] for i in hits],
-                    [ys[i] for i in hits],
-                    marker=marker,
-                    s=size,
-                    facecolors="none" if kind != "collision" else "red",
-                    edgecolors=edge,
-                    linewidths=1.0,
-                    zorder=3,
-                )
-    ax.ticklabel_format(useOffset=False, style="plain")
+    import numpy as np
+    from matplotlib.collections import LineCollection
+
+    if len(selected) <= LEGEND_BODIES:
+        for path, colour in zip(selected, colours, strict=True):
+            ax.plot(*_panel_data(panel, path), color=colour, linewidth=1.5, label=shown_name(path.name))
+    else:  # one collection: a Line2D per body would take minutes for thousands of bodies
+        lines = [np.column_stack(_panel_data(panel, path)) for path in selected]
+        ax.add_collection(LineCollection(lines, colors=colours, linewidths=1.5))
+        ax.autoscale_view()
+    starts = [(xs[0], ys[0]) for xs, ys in (_panel_data(panel, path) for path in selected)]
+    ax.scatter(*zip(*starts, strict=True), marker="o", s=25, c=colours, zorder=3)  # where each starts
+    for kind, (_, marker, edge, size) in EVENT_MARKERS.items():
+        marks = [_panel_data(panel, path.marks[kind]) for path in selected if kind in path.marks]
+        if marks:
+            ax.scatter(
+                np.concatenate([xs for xs, _ in marks]),
+                np.concatenate([ys for _, ys in marks]),
+                marker=marker,
+                s=size,
+                facecolors="none" if kind != "collision" else "red",
+                edgecolors=edge,
+                linewidths=1.0,
+                zorder=3,
+            )
+    _tick_labels(ax)
     ax.grid(True, color="0.9")
     if panel == "top":
         ax.set_title("from above")
@@ -292,13 +483,22 @@ def _draw_panel(ax: Any, panel: str, selected: list[BodyPath], colours: list[str
         ax.set_ylabel("z: height (m)")
 
 
+#: Tick labels are plain numbers (no offset, no exponent) below this magnitude: a landblock-global
+#: coordinate is at most 49,152 m; past it they are written in scientific notation.
+PLAIN_TICKS = 1e7
+
+
+def _tick_labels(ax: Any) -> None:
+    for axis, limits in (("x", ax.get_xlim()), ("y", ax.get_ylim())):
+        plain = max(abs(limit) for limit in limits) < PLAIN_TICKS
+        ax.ticklabel_format(axis=axis, useOffset=False, style="plain" if plain else "sci")
+
+
 def _landblock_seams(ax: Any, selected: list[BodyPath]) -> None:
     """Dashed lines on the landblock edges the paths reach (at most a few dozen)."""
-    xs = [x for path in selected for x in path.x]
-    ys = [y for path in selected for y in path.y]
-    for values, draw in ((xs, ax.axvline), (ys, ax.axhline)):
-        low = math.floor(min(values) / BLOCK_LENGTH)
-        high = math.ceil(max(values) / BLOCK_LENGTH)
+    for values, draw in (([p.x for p in selected], ax.axvline), ([p.y for p in selected], ax.axhline)):
+        low = math.floor(min(map(min, values)) / BLOCK_LENGTH)
+        high = math.ceil(max(map(max, values)) / BLOCK_LENGTH)
         if high - low <= 40:
             for edge in range(low + 1, high):
                 draw(edge * BLOCK_LENGTH, color="0.6", linestyle="--", linewidth=0.8)
@@ -308,10 +508,12 @@ def _legend(figure: Any, selected: list[BodyPath], colours: list[str]) -> None:
     from matplotlib.lines import Line2D
 
     handles = []
-    if len(selected) <= 12:
-        handles += [Line2D([], [], color=c, label=p.name) for p, c in zip(selected, colours, strict=True)]
+    if len(selected) <= LEGEND_BODIES:
+        handles += [
+            Line2D([], [], color=c, label=shown_name(p.name)) for p, c in zip(selected, colours, strict=True)
+        ]
     handles.append(Line2D([], [], marker="o", color="0.4", linestyle="", label="start"))
-    seen = {event_kind(event) for path in selected for _, event in path.events}
+    seen = {kind for path in selected for kind in path.marks}
     for kind, (label, marker, edge, _) in EVENT_MARKERS.items():
         if kind in seen:
             face = "red" if kind == "collision" else "none"

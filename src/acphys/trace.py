@@ -15,12 +15,16 @@ while the body is in contact.
 
 from __future__ import annotations
 
+import errno
 import json
 import math
+import os
+import re
+import stat
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any, BinaryIO, TextIO
 
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id
@@ -41,6 +45,23 @@ RECORD_KEYS = (
     "contact_normal",
     "events",
 )
+
+
+#: The longest line a record can take, in bytes with its newline. A record acphys writes is about
+#: 400 bytes and its events a few dozen each; a MiB holds thousands of events in one step and
+#: bounds what one line makes the reader hold (a file with no newline is refused, not slurped).
+MAX_LINE_BYTES = 1 << 20
+#: How deep a record's arrays and objects can nest. acphys writes lists in an object (depth 2);
+#: the bound keeps the JSON parser and the comparisons of ``diff`` far from Python's recursion limit.
+MAX_DEPTH = 32
+#: The most digits an integer in a record can have. acphys writes floats (any length of those
+#: reads as a float64); Python refuses integers of more than 4300 digits, and ``diff`` computes
+#: with the integers it reads.
+MAX_INT_DIGITS = 100
+
+_BRACKET = re.compile(rb"[][{}]")
+_STRING = re.compile(rb'"(?:[^"\\]++|\\.)*+"', re.DOTALL)
+_SURROGATE_ESCAPE = re.compile(rb"\\u[dD][89a-fA-F]")
 
 
 class TraceError(ValueError):
@@ -76,7 +97,15 @@ class TraceWriter:
         self.records = 0
 
     def __enter__(self) -> TraceWriter:
-        self._file = self.path.open("w", encoding="utf-8")
+        try:  # a named pipe that no process reads is refused rather than waited on
+            descriptor = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NONBLOCK, 0o666)
+        except OSError as error:
+            if error.errno != errno.ENXIO:
+                raise
+            label = printable(str(self.path))
+            raise TraceError(f"{label}: cannot write: a named pipe that no process reads") from None
+        os.set_blocking(descriptor, True)
+        self._file = os.fdopen(descriptor, "w", encoding="utf-8")
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -102,26 +131,139 @@ class TraceWriter:
 
 
 def read_trace(path: str | Path) -> Iterator[tuple[int, dict[str, Any]]]:
-    """Yield ``(line_number, record)`` for each record of a trace file."""
-    path = Path(path)
+    """Yield ``(line_number, record)`` for each record of a trace file, reading one line at a time.
+
+    A trace of any length streams through in constant memory. A line is refused
+    (:class:`TraceError` naming the file, the line and the limit) when it is
+    longer than :data:`MAX_LINE_BYTES`, not UTF-8, nested deeper than
+    :data:`MAX_DEPTH`, holds an integer of more than :data:`MAX_INT_DIGITS`
+    digits or a string that is not text, or is not a JSON object with ``t``
+    and ``body``.
+    """
+    label = printable(str(path))
+    with _open_regular(Path(path), label) as handle:
+        number = 0
+        while line := handle.readline(MAX_LINE_BYTES + 1):
+            number += 1
+            record = _parse_line(line, f"{label}:{number}")
+            if record is not None:
+                yield number, record
+
+
+def _open_regular(path: Path, label: str) -> BinaryIO:
+    """``path`` opened for reading, if it is a regular file (a FIFO would block, a device never end)."""
     try:
-        handle = path.open(encoding="utf-8")
+        descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)  # the open of a FIFO must not block
     except OSError as error:
-        raise TraceError(f"{path}: cannot open: {error.strerror}") from None
-    with handle:
-        for number, line in enumerate(handle, start=1):
-            if not line.strip():
-                continue
-            try:
-                record = json.loads(line)
-            except json.JSONDecodeError as error:
-                raise TraceError(f"{path}:{number}: not JSON: {error.msg}") from None
-            if not isinstance(record, dict):
-                raise TraceError(f"{path}:{number}: a record must be a JSON object")
-            missing = [key for key in ("t", "body") if key not in record]
-            if missing:
-                raise TraceError(f"{path}:{number}: record has no {', '.join(missing)}")
-            yield number, record
+        raise TraceError(f"{label}: cannot open: {error.strerror}") from None
+    except ValueError:  # a NUL byte in the name
+        raise TraceError(f"{label}: cannot open: a file name cannot hold a NUL byte") from None
+    mode = os.fstat(descriptor).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(descriptor)
+        raise TraceError(f"{label}: not a regular file ({_file_kind(mode)}); a trace is a file")
+    os.set_blocking(descriptor, True)
+    return os.fdopen(descriptor, "rb")
+
+
+def _file_kind(mode: int) -> str:
+    for test, kind in (
+        (stat.S_ISDIR, "a directory"),
+        (stat.S_ISFIFO, "a named pipe"),
+        (stat.S_ISCHR, "a character device"),
+        (stat.S_ISBLK, "a block device"),
+        (stat.S_ISSOCK, "a socket"),
+    ):
+        if test(mode):
+            return kind
+    return "not a file"
+
+
+def _parse_line(line: bytes, where: str) -> dict[str, Any] | None:
+    """The record on one line of a trace (None for a blank line), within the reader's limits."""
+    if len(line) > MAX_LINE_BYTES:
+        raise TraceError(f"{where}: the line is longer than {MAX_LINE_BYTES} bytes, the limit for a record")
+    try:
+        text = line.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise TraceError(
+            f"{where}: not UTF-8: byte {line[error.start]:#04x} at column {error.start + 1}"
+        ) from None
+    if not text.strip():
+        return None
+    if line.count(b"[") + line.count(b"{") > MAX_DEPTH and _depth(line) > MAX_DEPTH:
+        raise TraceError(f"{where}: values nest more than {MAX_DEPTH} deep, the limit for a record")
+    try:
+        record = _DECODER.decode(text)
+    except json.JSONDecodeError as error:
+        raise TraceError(f"{where}: not JSON: {error.msg} at column {error.colno}") from None
+    except _IntegerTooLong as error:
+        raise TraceError(
+            f"{where}: an integer of {error.args[0]} digits; the limit is {MAX_INT_DIGITS}"
+        ) from None
+    if not isinstance(record, dict):
+        raise TraceError(f"{where}: a record must be a JSON object")
+    if _SURROGATE_ESCAPE.search(line) and not _is_text(record):
+        raise TraceError(f"{where}: a string holds a lone UTF-16 surrogate escape, which is not text")
+    missing = [key for key in ("t", "body") if key not in record]
+    if missing:
+        raise TraceError(f"{where}: record has no {', '.join(missing)}")
+    return record
+
+
+def _depth(line: bytes) -> int:
+    """How deep the arrays and objects of a JSON line nest, counted up to just past
+    :data:`MAX_DEPTH` (brackets inside strings do not count)."""
+    depth = deepest = 0
+    for bracket in _BRACKET.findall(_STRING.sub(b"", line)):
+        depth += 1 if bracket in b"[{" else -1
+        deepest = max(deepest, depth)
+        if deepest > MAX_DEPTH:
+            break
+    return deepest
+
+
+class _IntegerTooLong(Exception):
+    """An integer of more than :data:`MAX_INT_DIGITS` digits; its argument is how many."""
+
+
+def _bounded_int(numeral: str) -> int:
+    digits = len(numeral) - numeral.startswith("-")
+    if digits > MAX_INT_DIGITS:
+        raise _IntegerTooLong(digits)
+    return int(numeral)
+
+
+#: Reads a line's JSON (floats in C; integers, rare in a trace, checked in Python first).
+_DECODER = json.JSONDecoder(parse_int=_bounded_int)
+
+
+def _is_text(value: Any) -> bool:
+    """Whether every string in ``value`` (keys too) can be written as UTF-8."""
+    if isinstance(value, str):
+        try:
+            value.encode("utf-8")
+        except UnicodeEncodeError:
+            return False
+        return True
+    if isinstance(value, list):
+        return all(map(_is_text, value))
+    if isinstance(value, dict):
+        return all(_is_text(key) and _is_text(item) for key, item in value.items())
+    return True
+
+
+def printable(text: str) -> str:
+    """``text`` with its unprintable characters escaped, so that a message stays on one line."""
+    if text.isprintable():
+        return text
+    return "".join(char if char.isprintable() else repr(char)[1:-1] for char in text)
+
+
+def brief(value: Any, limit: int = 80) -> str:
+    """The ``repr`` of ``value`` for a message: cut to ``limit`` characters."""
+    text = repr(value)
+    return text if len(text) <= limit else f"{text[: limit - 3]}..."
 
 
 @dataclass
@@ -138,8 +280,10 @@ class Divergence:
 
     def describe(self) -> str:
         where = f"line {self.line}"
-        if self.t is not None:
+        if _is_number(self.t):
             where += f", t={self.t:.6g}"
+        elif self.t is not None:
+            where += f", t={self.t!r}"
         if self.body is not None:
             where += f", body {self.body!r}"
         text = f"first divergence at {where}: {self.field}: {self.a!r} vs {self.b!r}"
@@ -148,15 +292,23 @@ class Divergence:
         return text
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
 def _first_difference(field: str, a: Any, b: Any, tol: float) -> Divergence | None:
-    """Where ``a`` and ``b`` first differ beyond ``tol`` (the record fields are left unset)."""
-    if isinstance(a, bool) or isinstance(b, bool):
-        return None if type(a) is type(b) and a == b else Divergence(0, None, None, field, a, b)
-    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+    """Where ``a`` and ``b`` first differ beyond ``tol`` (the record fields are left unset).
+
+    NaN equals NaN and infinity itself, so a trace never diverges from itself;
+    -0.0 equals 0.0 (they differ by nothing).
+    """
+    if _is_number(a) and _is_number(b):
+        if a == b or (a != a and b != b):
+            return None
         difference = abs(a - b)
-        if math.isnan(difference) or difference > tol:
-            return Divergence(0, None, None, field, a, b, difference)
-        return None
+        if math.isnan(difference):
+            return Divergence(0, None, None, field, a, b)
+        return Divergence(0, None, None, field, a, b, difference) if difference > tol else None
     numeric_list = isinstance(a, list) and isinstance(b, list) and field not in ("transient", "events")
     if numeric_list and len(a) == len(b):
         for index, (x, y) in enumerate(zip(a, b, strict=True)):
@@ -164,15 +316,27 @@ def _first_difference(field: str, a: Any, b: Any, tol: float) -> Divergence | No
             if found is not None:
                 return found
         return None
-    return None if a == b else Divergence(0, None, None, field, a, b)
+    return None if _same(a, b) else Divergence(0, None, None, field, a, b)
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Whether two JSON values are equal, a boolean never equal to a number and NaN equal to NaN."""
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(map(_same, a, b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[key], b[key]) for key in a)
+    if isinstance(a, bool) or isinstance(b, bool):
+        return type(a) is type(b) and a == b
+    return a == b or (isinstance(a, float) and isinstance(b, float) and a != a and b != b)
 
 
 def diff_traces(path_a: str | Path, path_b: str | Path, tol: float = 1e-6) -> Divergence | None:
     """The first record and field where two traces differ by more than ``tol``, or None.
 
     Records are compared in order; numbers (and numeric list elements) by
-    absolute difference, everything else exactly. A trace that ends early
-    diverges at the first record the other has and it lacks.
+    absolute difference, everything else exactly; NaN equals NaN in the same
+    field and -0.0 equals 0.0. A trace that ends early diverges at the first
+    record the other has and it lacks. Both files stream through.
     """
     if not tol >= 0.0:
         raise ValueError(f"tolerance must be a non-negative number, got {tol}")

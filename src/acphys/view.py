@@ -10,19 +10,22 @@ from __future__ import annotations
 import math
 import string
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
-from acphys.plot import BodyPath, event_kind
+from acphys.plot import SHOWN_NAME, BodyPath, print_warning, shown_name, thinning
 
 #: Map symbols, one per body: its path in lower case, where it ends in upper case.
 SYMBOLS = string.ascii_uppercase + string.digits
 #: Where two bodies' paths share a map cell.
 CROSSING = "*"
+#: The most rows the table prints: rich lays out about a row a millisecond, so a 100,000-body
+#: trace would take minutes (the map still draws every body).
+TABLE_ROWS = 1000
 STYLES = ("red", "green", "yellow", "blue", "magenta", "cyan", "bright_red", "bright_green")
 
 
@@ -48,32 +51,28 @@ class BodySummary:
 
 
 def summarise(path: BodyPath) -> BodySummary:
-    distance = 0.0
-    max_speed = 0.0
-    for i in range(1, len(path)):
-        step = math.dist((path.x[i - 1], path.y[i - 1], path.z[i - 1]), (path.x[i], path.y[i], path.z[i]))
-        distance += step
-        dt = path.t[i] - path.t[i - 1]
-        if dt > 0.0:
-            max_speed = max(max_speed, step / dt)
     return BodySummary(
         name=path.name,
-        steps=len(path),
+        steps=path.added,
         duration=path.t[-1] - path.t[0] if len(path) else 0.0,
         start_cell=path.first_cell,
         start=path.first_origin,
         end_cell=path.last_cell,
         end=path.last_origin,
-        distance=distance,
-        max_speed=max_speed,
-        contact_time=sum(q for q, contact in zip(path.quantum, path.contact, strict=True) if contact),
-        events=Counter(event_kind(event) for _, event in path.events),
+        distance=path.distance,
+        max_speed=path.max_speed,
+        contact_time=path.contact_time,
+        events=Counter(path.events),
     )
 
 
 def summary_table(paths: Sequence[BodyPath], title: str = "") -> Table:
-    """A row per body; positions are the first and last records' landblocks and local origins."""
-    table = Table(title=title or None)
+    """A row per body (the first :data:`TABLE_ROWS`); positions are the first and last records'
+    landblocks and local origins.
+
+    Every name is shown as plain text (a ``[red]`` in it is not rich markup).
+    """
+    table = Table(title=Text(shown_name(title, limit=3 * SHOWN_NAME)) if title else None)
     table.add_column("body", no_wrap=True)
     table.add_column("start: block x y z", no_wrap=True)
     table.add_column("end: block x y z", no_wrap=True)
@@ -81,18 +80,19 @@ def summary_table(paths: Sequence[BodyPath], title: str = "") -> Table:
     table.add_column("max m/s", justify="right")
     table.add_column("contact s", justify="right")
     table.add_column("events", no_wrap=True)
-    for index, path in enumerate(paths):
+    for index, path in enumerate(paths[:TABLE_ROWS]):
         s = summarise(path)
         name = Text(_symbol(index), style=f"bold {_style(index)}")
-        name.append(f" {s.name}", style="")
+        name.append(f" {shown_name(s.name)}", style="")
+        events = "\n".join(f"{shown_name(kind)} {count}" for kind, count in sorted(s.events.items()))
         table.add_row(
             name,
-            _where(s.start_cell, s.start),
-            _where(s.end_cell, s.end),
-            f"{s.distance:.2f}",
-            f"{s.max_speed:.2f}",
-            f"{s.contact_time:.2f}",
-            "\n".join(f"{kind} {count}" for kind, count in sorted(s.events.items())) or "-",
+            Text(_where(s.start_cell, s.start)),
+            Text(_where(s.end_cell, s.end)),
+            Text(_figure(s.distance)),
+            Text(_figure(s.max_speed)),
+            Text(_figure(s.contact_time)),
+            Text(events or "-"),
         )
     return table
 
@@ -159,26 +159,37 @@ def ascii_map(paths: Sequence[BodyPath], width: int = 64, height: int = 20) -> l
     lines.append(Text("+" + "-" * columns + "+"))
     lines.append(
         Text(
-            f"x (east) {x0:.1f} to {x1:.1f} m, y (north) {y0:.1f} to {y1:.1f} m, landblock-global; "
+            f"x (east) {_metres(x0)} to {_metres(x1)} m, y (north) {_metres(y0)} to {_metres(y1)} m, "
+            "landblock-global; "
             f"one column {scale:.3g} m, one row {2 * scale:.3g} m; {CROSSING}: paths share a cell"
         )
     )
     legend = Text()
-    for index, path in enumerate(paths):
+    for index, path in enumerate(paths[: len(SYMBOLS)]):
         if index:
             legend.append("  ")
         legend.append(_symbol(index), style=f"bold {_style(index)}")
-        legend.append(f" {path.name}")
+        legend.append(f" {shown_name(path.name)}")
+    if len(paths) > len(SYMBOLS):
+        legend.append(f"  # the other {len(paths) - len(SYMBOLS):,}")
     lines.append(legend)
     return lines
 
 
-def show(console: Console, paths: Sequence[BodyPath], title: str = "") -> None:
-    """Print the table and the map."""
+def show(
+    console: Console, paths: Sequence[BodyPath], title: str = "", warn: Callable[[str], None] = print_warning
+) -> None:
+    """Print the table and the map; paths drawn from part of their records are told to ``warn``
+    (by default an ``acphys: warning:`` line on stderr)."""
     console.print(summary_table(paths, title))
     map_width = max(8, min(72, console.width - 10))
     for line in ascii_map(paths, width=map_width):
         console.print(line, soft_wrap=True, highlight=False)
+    if len(paths) > TABLE_ROWS:
+        warn(f"the table lists the first {TABLE_ROWS} of {len(paths):,} bodies; pick others with --bodies")
+    thinned = [path for path in paths if path.stride > 1]
+    if thinned:
+        warn(f"the map: {thinning(thinned)}")
 
 
 def _symbol(index: int) -> str:
@@ -190,4 +201,18 @@ def _style(index: int) -> str:
 
 
 def _where(cell: str, origin: tuple[float, float, float]) -> str:
-    return f"{cell[:6]} {origin[0]:.1f} {origin[1]:.1f} {origin[2]:.1f}"
+    return f"{cell[:6]} {_metres(origin[0])} {_metres(origin[1])} {_metres(origin[2])}"
+
+
+#: Figures below this magnitude are written with fixed decimals, larger ones in scientific notation.
+PLAIN_FIGURES = 1e7
+
+
+def _metres(value: float) -> str:
+    """A coordinate to a tenth of a metre (three figures when it is huge)."""
+    return f"{value:.1f}" if abs(value) < PLAIN_FIGURES else f"{value:.3g}"
+
+
+def _figure(value: float) -> str:
+    """A distance, speed or time to the hundredth (three figures when it is huge)."""
+    return f"{value:.2f}" if abs(value) < PLAIN_FIGURES else f"{value:.3g}"

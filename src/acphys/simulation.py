@@ -40,20 +40,32 @@ class Physics:
 
     def __init__(self, world: World) -> None:
         self.world = world
+        #: Each bucket's chain, oldest first: the head of retail's chain is the last entry.
         self._buckets: list[list[PhysicsObj]] = [[] for _ in range(OBJECT_TABLE_BUCKETS)]
-        self._order: list[PhysicsObj] = []
+        #: The walk order, made again (once) by the first walk after an ``add``.
+        self._order: list[PhysicsObj] | None = []
         #: ``last_update``: when the bodies were last run.
         self.last_update = world.cur_time
 
     def add(self, obj: PhysicsObj) -> None:
-        """Put ``obj`` at the head of its bucket (retail ``CObjectMaint::AddObject``)."""
-        self._buckets[object_table_bucket(obj.id)].insert(0, obj)
-        self._order = [body for bucket in self._buckets for body in bucket]
+        """Put ``obj`` at the head of its bucket (retail ``CObjectMaint::AddObject``).
+
+        Constant time: the chain keeps its head last, and the walk order is made again only
+        when it is next needed, so adding N bodies costs O(N), not O(N²).
+        """
+        self._buckets[object_table_bucket(obj.id)].append(obj)
+        self._order = None
+
+    def _walk_order(self) -> list[PhysicsObj]:
+        """Bucket by bucket, each chain from its head (the newest) back (``HashBaseIter::Next``)."""
+        if self._order is None:
+            self._order = [body for bucket in self._buckets for body in reversed(bucket)]
+        return self._order
 
     @property
     def objects(self) -> list[PhysicsObj]:
         """The bodies in the order ``use_time`` runs them."""
-        return list(self._order)
+        return list(self._walk_order())
 
     def use_time(self) -> bool:
         """Run every body's ``update_object`` once at least MIN_QUANTUM has passed.
@@ -70,7 +82,7 @@ class Physics:
             return False
         if elapsed < MIN_QUANTUM:
             return False
-        for obj in self._order:
+        for obj in self._walk_order():
             if self.world.has_object(obj):  # a removed object is no longer in the table
                 obj.update_object()
         self.last_update = self.world.cur_time

@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from acphys.constants import BLOCK_LENGTH, MAX_ELASTICITY
 from acphys.flags import TransientState
@@ -255,14 +256,32 @@ def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData) -> Setup
     return find
 
 
+#: Finds a body's ``motion_table`` by its key and value (:func:`_motion_table`).
+TableLookup = Callable[[str, Any], MotionTable | None]
+
+_Found = TypeVar("_Found")
+
+
+def _shared(find: Callable[[str, Any], _Found]) -> Callable[[str, Any], _Found]:
+    """``find`` called once per name: every body naming the same setup or motion table gets the
+    same object, as retail objects share the cached DAT ``CSetup`` and ``CMotionTable`` (each
+    body keeps its own state in its part array, sequence and motion-table manager). A value
+    that is not a name, or a name ``find`` refuses, is looked up (and reported) each time.
+    """
+    found: dict[str, _Found] = {}
+
+    def lookup(key: str, value: Any) -> _Found:
+        if not isinstance(value, str):
+            return find(key, value)
+        if value not in found:
+            found[value] = find(key, value)
+        return found[value]
+
+    return lookup
+
+
 def _read_body(
-    ctx: Ctx,
-    key: str,
-    raw: Any,
-    world: World,
-    find_setup: SetupLookup,
-    tables: dict[str, MotionTable],
-    data: RetailData,
+    ctx: Ctx, key: str, raw: Any, world: World, find_setup: SetupLookup, find_table: TableLookup
 ) -> PhysicsObj:
     table = read.table(ctx, key, raw, BODY_KEYS)
     for required in ("name", "landblock", "origin"):
@@ -304,7 +323,7 @@ def _read_body(
         )
     motion_table = setup.motion_table
     if "motion_table" in table:
-        motion_table = _motion_table(ctx, f"{key}.motion_table", table["motion_table"], tables, data)
+        motion_table = find_table(f"{key}.motion_table", table["motion_table"])
 
     frame = Frame.from_heading(origin, heading)
     warn_outside_landblocks(ctx, f"{key}.landblock", world, landblock)
@@ -396,8 +415,7 @@ def _read_bodies(
     raw: Any,
     world: World,
     find_setup: SetupLookup,
-    tables: dict[str, MotionTable],
-    data: RetailData,
+    find_table: TableLookup,
     objects: list[PhysicsObj],
 ) -> list[PhysicsObj]:
     """Every ``[[body]]`` (at least one); a body with a problem is reported and left out."""
@@ -406,19 +424,21 @@ def _read_bodies(
         raw_bodies = read.list_of_tables(ctx, "body", raw)
         if not raw_bodies:
             raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
-        names = {body.name for body in objects}
+        object_names = {body.name for body in objects}
+        body_names: set[str] = set()
         for index, item in enumerate(raw_bodies):
             name = item.get("name") if isinstance(item, dict) else None
             if isinstance(name, str):
                 ctx.label(f"body[{index}]", f"body {name!r}")
             with ctx.part(f"body.{name}" if isinstance(name, str) else "body.?"):
-                body = _read_body(ctx, f"body[{index}]", item, world, find_setup, tables, data)
-                if any(other.name == body.name for other in bodies):
+                body = _read_body(ctx, f"body[{index}]", item, world, find_setup, find_table)
+                if body.name in body_names:
                     raise ctx.fail(f"body[{index}].name", f"two bodies are named {body.name!r}")
-                if body.name in names:
+                if body.name in object_names:
                     raise ctx.fail(
                         f"body[{index}].name", f"a body and an object are both named {body.name!r}"
                     )
+                body_names.add(body.name)
                 bodies.append(body)
     return bodies
 
@@ -458,11 +478,12 @@ def build_scenario(
             read_landblocks(ctx, document.get("landblock", []), world, data)
         with ctx.part():
             read_buildings(ctx, document.get("building", []), world)
-        find_setup = _setup_lookup(ctx, setups, data)
+        find_setup = _shared(_setup_lookup(ctx, setups, data))
+        find_table = _shared(lambda key, value: _motion_table(ctx, key, value, tables, data))
         objects: list[PhysicsObj] = []
         with ctx.part():
             objects = read_objects(ctx, document.get("object", []), world, find_setup)
-        bodies = _read_bodies(ctx, document.get("body", []), world, find_setup, tables, data, objects)
+        bodies = _read_bodies(ctx, document.get("body", []), world, find_setup, find_table, objects)
     by_name = {body.name: body for body in bodies}
     if header.player is not None:
         with ctx.part():

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from acphys.flags import PhysicsState, flag_names, parse_flag_names
+from acphys.inputs import one_line
 from acphys.math.vector import Vector3
 from acphys.motion.commands import MOTION_IDS, STYLE_MASK, motion_id
 from acphys.precision import FLT_MAX, f32
@@ -43,7 +44,7 @@ class TomlLines:
         self.written: dict[str, str] = {}
         counts: dict[str, int] = {}
         current = ""
-        for number, line in enumerate(text.splitlines(), start=1):
+        for number, line in enumerate(text.split("\n"), start=1):  # TOML's newlines only
             stripped = line.strip()
             if match := _ARRAY_HEADER.match(stripped):
                 name = match.group(1)
@@ -60,11 +61,79 @@ class TomlLines:
 
     def line(self, key: str) -> int | None:
         """The line of ``key`` (a scenario key path), else of the table holding it, else None."""
-        table = max((t for t in self.tables if _within(key, t)), key=len)
+        table = next(t for t in reversed(_tables_holding(key)) if t in self.tables)
         header, keys = self.tables[table]
         rest = key[len(table) :].lstrip(".")
         first = re.split(r"[.\[]", rest, maxsplit=1)[0]
         return keys.get(first, header or None) if rest else (header or None)
+
+
+#: The deepest a scenario may nest arrays and inline tables. tomllib reads them recursively,
+#: two or three Python frames a level, and past about 300 levels hits Python's default recursion
+#: limit of 1000 (a RecursionError); the scenario format itself nests at most 5 deep (a solid's
+#: polygons of points).
+MAX_NESTING = 64
+#: The most parts a dotted key (``a.b.c`` has 3) may have: tomllib's time and memory grow with
+#: the square of it (a key of 20,000 parts takes a gigabyte; 32 parts keep a file of nothing
+#: but such keys to seconds). Scenario keys have at most 3.
+MAX_KEY_PARTS = 32
+#: The most characters a number may be written with: a float64 needs 17 significant digits, a
+#: 5,000-digit integer makes tomllib raise (Python's 4,300-digit limit on converting to int),
+#: and one of 100 characters converts to a float or an int of at most 400 bits without trouble.
+MAX_NUMBER_CHARS = 100
+
+_STRINGS_AND_COMMENTS = re.compile(
+    r'"""(?:[^"\\]++|\\.|""?+(?!"))*+"{3,5}'  # a multi-line basic string
+    r"|'''(?:[^']++|''?+(?!'))*+'{3,5}"  # a multi-line literal string
+    r'|"(?:[^"\\\n]++|\\.)*+"'  # a basic string
+    r"|'[^'\n]*+'"  # a literal string
+    r"|#[^\n]*+",  # a comment
+    re.DOTALL,
+)
+_BRACKETS = re.compile(r"[\[{]++|[\]}]++")
+# A key part is a bare key or a string (by now an empty ``""`` holding the string's newlines).
+_LONG_KEY = re.compile(rf'(?:(?:[A-Za-z0-9_\-]++|"\n*+")[ \t]*+\.[ \t]*+){{{MAX_KEY_PARTS}}}[A-Za-z0-9_\-"]')
+_LONG_NUMBER = re.compile(rf"(?<![\w.+\-])(?:[+\-](?=[0-9])|[0-9])[\w.+\-:]{{{MAX_NUMBER_CHARS},}}")
+
+
+def _blank(match: re.Match[str]) -> str:
+    """A string as an empty ``""`` holding its newlines (lines still count); a comment as nothing."""
+    text = match.group()
+    return "" if text.startswith("#") else '"' + "\n" * text.count("\n") + '"'
+
+
+def check_toml_limits(source: str, text: str) -> None:
+    """Refuse TOML text that would make tomllib recurse too deep, take quadratic time and memory,
+    or fail to convert a number: nesting past ``MAX_NESTING``, a key of more than
+    ``MAX_KEY_PARTS`` parts, a number longer than ``MAX_NUMBER_CHARS``. Strings and comments are
+    left out of the count; the :class:`ScenarioError` names the line and the limit.
+    """
+    code = _STRINGS_AND_COMMENTS.sub(_blank, text)
+
+    def fail(position: int, problem: str) -> ScenarioError:
+        line = code.count("\n", 0, position) + 1
+        return ScenarioError(one_line(f"{source}: line {line}: {problem}"))
+
+    if match := _LONG_KEY.search(code):
+        raise fail(match.start(), f"a key of more than {MAX_KEY_PARTS} dotted parts (the scenario key limit)")
+    if match := _LONG_NUMBER.search(code):
+        raise fail(
+            match.start(),
+            f"a number of {len(match.group()):,} characters, more than the {MAX_NUMBER_CHARS} "
+            "a scenario number may have",
+        )
+    depth = 0
+    for match in _BRACKETS.finditer(code):
+        if match.group()[0] in "[{":
+            depth += match.end() - match.start()
+            if depth > MAX_NESTING:
+                raise fail(
+                    match.start(),
+                    f"arrays and inline tables nested deeper than {MAX_NESTING} levels "
+                    "(the scenario nesting limit)",
+                )
+        else:  # an unmatched close is tomllib's to report: count on from 0
+            depth = max(0, depth - (match.end() - match.start()))
 
 
 class Skipped(Exception):
@@ -72,9 +141,11 @@ class Skipped(Exception):
     reported, so this one says nothing (:meth:`Ctx.part` swallows it)."""
 
 
-def _within(key: str, table: str) -> bool:
-    """Whether the key path ``key`` lies in the table path ``table``."""
-    return not table or key == table or key.startswith((f"{table}.", f"{table}["))
+def _tables_holding(key: str) -> list[str]:
+    """The table paths the key path ``key`` lies in, outermost first: ``""``, ``"body"``,
+    ``"body[2]"`` and ``"body[2].origin"`` for ``"body[2].origin"`` (looked up, not searched
+    for, so that a message costs the same in a scenario of ten thousand bodies)."""
+    return ["", *(key[:i] for i, char in enumerate(key) if char in ".[" and i), key]
 
 
 @dataclass
@@ -107,9 +178,10 @@ class Ctx:
         line = self.lines.line(key) if self.lines is not None else None
         if line is not None:
             where.append(f"line {line}")
-        where += [text for table, text in self.labels.items() if table and _within(key, table)]
+        where += [self.labels[table] for table in _tables_holding(key) if table in self.labels]
         trailer = f" ({', '.join(where)})" if where else ""
-        return ScenarioError(f"{self.source}: {key}: {problem}{trailer}")
+        # One line whatever the key or a name holds (a TOML key may be "a\nb").
+        return ScenarioError(one_line(f"{self.source}: {key}: {problem}{trailer}"))
 
     @contextmanager
     def part(self, name: str | None = None) -> Iterator[None]:
@@ -160,9 +232,13 @@ def table(ctx: Ctx, key: str, value: Any, allowed: tuple[str, ...]) -> dict[str,
 def number(ctx: Ctx, key: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ctx.fail(key, f"expected a number, got {kind(value)}")
-    if not math.isfinite(value):
+    try:
+        result = float(value)
+    except OverflowError:  # an integer past the float range
+        raise ctx.fail(key, f"expected a finite number, got {kind(value)}") from None
+    if not math.isfinite(result):
         raise ctx.fail(key, f"expected a finite number, got {value}")
-    return float(value)
+    return result
 
 
 def ranged(ctx: Ctx, key: str, value: Any, low: float, high: float, *, open_low: bool = False) -> float:
@@ -228,13 +304,19 @@ def boolean(ctx: Ctx, key: str, value: Any) -> bool:
     return value
 
 
+#: The longest id string read: ``0x`` and 16 hex digits, room for any leading zeros of a 32-bit id.
+_ID_CHARS = 18
+
+
 def _id(ctx: Ctx, key: str, value: Any, what: str) -> int:
     """An id as an integer or a hex string; ``what`` names it with an example in the error."""
     if isinstance(value, str):
         try:
+            if len(value) > _ID_CHARS:
+                raise ValueError(value)
             number = int(value, 16)
         except ValueError:
-            raise ctx.fail(key, f"expected {what}, got {value!r}") from None
+            raise ctx.fail(key, f"expected {what}, got {quoted(value)}") from None
         if not value.lower().startswith("0x"):
             ctx.warn(key, f'"{value}" is read as hex, 0x{number:X}: write "0x{value}" to say so')
         return number
@@ -269,7 +351,7 @@ def state(ctx: Ctx, key: str, value: Any) -> PhysicsState:
         return parse_flag_names(PhysicsState, value)
     except KeyError as error:
         known = ", ".join(flag_names(PhysicsState(sum(PhysicsState))))
-        raise ctx.fail(key, f"unknown state {error.args[0]!r} (known: {known})") from None
+        raise ctx.fail(key, f"unknown state {quoted(error.args[0])} (known: {known})") from None
 
 
 def list_of_tables(ctx: Ctx, key: str, value: Any) -> list[Any]:
@@ -278,13 +360,26 @@ def list_of_tables(ctx: Ctx, key: str, value: Any) -> list[Any]:
     return value
 
 
+#: The most characters of a string a message quotes (a value may be megabytes long).
+QUOTED_CHARS = 60
+
+
+def quoted(text: str) -> str:
+    """``text`` as Python writes a string, cut to ``QUOTED_CHARS`` characters for a message."""
+    if len(text) <= QUOTED_CHARS:
+        return repr(text)
+    return f"{text[:QUOTED_CHARS]!r}... ({len(text):,} characters)"
+
+
 def kind(value: Any) -> str:
     if isinstance(value, bool):
         return f"the boolean {str(value).lower()}"
+    if isinstance(value, int) and value.bit_length() > 64:
+        return f"a {value.bit_length()}-bit whole number"
     if isinstance(value, (int, float)):
         return f"the number {value}"
     if isinstance(value, str):
-        return f"the string {value!r}"
+        return f"the string {quoted(value)}"
     if isinstance(value, list):
         return f"a list of {len(value)}"
     if isinstance(value, dict):
@@ -307,11 +402,13 @@ def degrees_per_second(ctx: Ctx, key: str, value: Any) -> Vector3:
 
 def motion(ctx: Ctx, key: str, value: Any) -> int:
     """A retail motion or style, by name or id."""
+    if isinstance(value, str) and len(value) > QUOTED_CHARS:  # longer than any motion name
+        raise ctx.fail(key, f"expected a motion name or id, got {quoted(value)}")
     if isinstance(value, str) and value.startswith("0x"):
         try:
             value = int(value, 16)
         except ValueError:
-            raise ctx.fail(key, f"expected a motion name or id, got {value!r}") from None
+            raise ctx.fail(key, f"expected a motion name or id, got {quoted(value)}") from None
     if not isinstance(value, (str, int)) or isinstance(value, bool):
         raise ctx.fail(key, f"expected a motion name or id, got {kind(value)}")
     try:

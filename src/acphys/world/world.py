@@ -69,8 +69,9 @@ class World:
         #: ``CObjectMaint``'s object table: every body made in this world, by id.
         self._objects: dict[int, PhysicsObj] = {}
         self._next_object_id = FIRST_OBJECT_ID
-        #: ``CObjectMaint``'s lost cell: bodies whose position is in no cell, waiting for one.
-        self.lost_cell: list[PhysicsObj] = []
+        #: ``CObjectMaint``'s lost cell (keys, in the order they came): bodies whose position is in
+        #: no cell, waiting for one.
+        self._lost_cell: dict[PhysicsObj, None] = {}
 
     # -- objects ---------------------------------------------------------------------------
 
@@ -110,15 +111,18 @@ class World:
         """The body with this id, or None (retail ``CObjectMaint::GetObjectA``)."""
         return self._objects.get(object_id)
 
+    @property
+    def lost_cell(self) -> list[PhysicsObj]:
+        """The bodies in the lost cell, in the order they came."""
+        return list(self._lost_cell)
+
     def goto_lost_cell(self, obj: PhysicsObj) -> None:
         """Park ``obj`` in the lost cell (once), as ``CObjectMaint::GotoLostCell`` does."""
-        if obj not in self.lost_cell:
-            self.lost_cell.append(obj)
+        self._lost_cell.setdefault(obj, None)
 
     def remove_from_lost_cell(self, obj: PhysicsObj) -> None:
         """Take ``obj`` out of the lost cell, if it is there (``CObjectMaint::RemoveFromLostCell``)."""
-        if obj in self.lost_cell:
-            self.lost_cell.remove(obj)
+        self._lost_cell.pop(obj, None)
 
     # -- terrain and cells -----------------------------------------------------------------
 

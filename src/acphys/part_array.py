@@ -241,15 +241,19 @@ class PartArray:
         if self.setup.parts is None:
             for part in self.parts:
                 part.gfxobj_scale = Vector3(new_scale, new_scale, new_scale)
-            return
-        for part, desc in zip(self.parts, self.setup.parts, strict=True):
-            default = desc.default_scale
-            part.gfxobj_scale = Vector3(default.x * new_scale, default.y * new_scale, default.z * new_scale)
+        else:
+            for part, desc in zip(self.parts, self.setup.parts, strict=True):
+                default = desc.default_scale
+                part.gfxobj_scale = Vector3(
+                    default.x * new_scale, default.y * new_scale, default.z * new_scale
+                )
+        self._shadows_moved()
 
     def set_cell_id(self, cell_id: int) -> None:
         """Retail: CPartArray::SetCellID @ 0x00517DD0 (acclient.c:325145)"""
         for part in self.parts:
             part.pos.objcell_id = cell_id
+        self._shadows_moved()
 
     def set_frame(self, frame: Frame) -> None:
         """Place the parts at the body's ``frame`` (lights are not ported).
@@ -257,6 +261,14 @@ class PartArray:
         Retail: CPartArray::SetFrame @ 0x00519310 (acclient.c:326765)
         """
         self.update_parts(frame)
+        self._shadows_moved()
+
+    def _shadows_moved(self) -> None:
+        """Not retail: the body's place, cell or scale changed, so crowded cells file its shadows
+        again (``CellMembership.shadows_moved``). Every such change of a body reaches its part
+        array, which is why the call is made here."""
+        if self.owner is not None:
+            self.owner.shadows_moved()
 
     def update_parts(self, frame: Frame) -> None:
         """Each part's frame is ``frame`` combined with its frame in the current animation frame

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from acphys.constants import BLOCK_LENGTH
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState, member_namespace
 from acphys.geometry.sphere import DUMMY_SPHERE
 from acphys.math.cell_id import adjust_to_outside, is_outdoor
@@ -14,7 +16,7 @@ from acphys.math.position import Position
 from acphys.math.vector import Vector3
 from acphys.precision import f32, pack3, unpack3
 from acphys.transition.transition import Transition
-from acphys.world.obj_cell import CellArray, ObjCell, ShadowObj
+from acphys.world.obj_cell import Box, CellArray, ObjCell, ShadowObj
 
 if TYPE_CHECKING:
     from acphys.world.env_cell import EnvCell
@@ -536,3 +538,57 @@ class CellMembership:
             if shadow.cell is not None:
                 shadow.cell.remove_shadow_object(shadow)
         self.shadow_objects = []
+
+    # -- the box a crowded cell files a shadow by (not retail) ------------------------------
+
+    def collision_box(self) -> Box | None:
+        """The box, in landblock-global metres, around the spheres ``find_obj_collisions`` tests
+        (placed at ``position`` and ``scale`` as ``intersects_sphere_placed`` places them); None
+        for a body every sweep must ask: one with cylspheres or a physics BSP, a particle
+        emitter (its parts do not follow its frame, so a turn would not re-file it), one with no
+        cell, or one with a coordinate that is not finite.
+
+        Not retail: a cell with many shadows files them by this box, so that a sweep asks only
+        the bodies it could touch (:meth:`ObjCell.find_obj_collisions`); the part array re-files
+        the body whenever its frame, cell or scale changes (:meth:`shadows_moved`).
+        """
+        parts = self.part_array
+        cell_id = self.position.objcell_id
+        if parts is None or not cell_id or self.state & PS.PARTICLE_EMITTER or parts.get_num_cylsphere():
+            return None
+        if any(part.physics_bsp is not None for part in parts.parts):
+            return None
+        frame = self.position.frame
+        m, origin = frame.m, frame.origin
+        ox = origin.x + ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH
+        oy = origin.y + ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH
+        oz = origin.z
+        scale = self.scale
+        x0 = y0 = z0 = math.inf
+        x1 = y1 = z1 = -math.inf
+        for sphere in parts.get_sphere():
+            center = sphere.center
+            cx, cy, cz = center.x * scale, center.y * scale, center.z * scale
+            x = m[3] * cy + m[0] * cx + m[6] * cz + ox
+            y = m[4] * cy + m[1] * cx + m[7] * cz + oy
+            z = m[5] * cy + m[2] * cx + m[8] * cz + oz
+            radius = sphere.radius * scale
+            x0, x1 = min(x0, x - radius), max(x1, x + radius)
+            y0, y1 = min(y0, y - radius), max(y1, y + radius)
+            z0, z1 = min(z0, z - radius), max(z1, z + radius)
+        box = (x0, y0, z0, x1, y1, z1)
+        if not math.isfinite(x0 + y0 + z0 + x1 + y1 + z1):
+            return None
+        return box
+
+    def shadows_moved(self) -> None:
+        """The body's frame, cell or scale changed: its shadows in cells that file them are
+        filed again by its new :meth:`collision_box`."""
+        box: Box | None = None
+        boxed = False
+        for shadow in self.shadow_objects:
+            cell = shadow.cell
+            if cell is not None and cell.shadow_tiles is not None:
+                if not boxed:
+                    box, boxed = self.collision_box(), True
+                cell.refile_shadow(shadow, box)

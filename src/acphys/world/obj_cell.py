@@ -42,9 +42,12 @@ Divergences from ACE's ``ObjCell.cs`` (the decompilation wins):
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
+from operator import attrgetter
 from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
+from acphys.constants import BLOCK_LENGTH
 from acphys.flags import ObjectInfoState, TransitionState, member_namespace
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import FIRST_ENV_CELL, format_cell_id, get_block_offset
@@ -72,6 +75,27 @@ LEFT_DETECTION = 2
 #: ``find_cell_list`` for cylspheres fills a static array of 10 spheres (acclient.c:347351-347357).
 MAX_CYLSPHERE_CELL_LIST = 10
 
+#: A cell files its shadows by place once it holds this many, so that a sweep through a crowded
+#: cell asks only the bodies within its reach (:meth:`ObjCell.find_obj_collisions`): below it,
+#: asking every body costs less than keeping the files.
+SHADOW_INDEX_MIN = 16
+#: ... and forgets the files when it falls below this many (half, so that a cell at the edge
+#: does not file and forget at every step).
+SHADOW_INDEX_DROP = 8
+#: The side of the squares (m) a filed cell sorts its shadows into, by the centre of each body's
+#: box: about a human's width, so a sweep looks into a few squares holding a few bodies each. A
+#: body wider than two squares is not filed but asked by every sweep.
+SHADOW_TILE = 2.0
+#: How much farther apart than touching (m) a body's box and a sweep's must be for the sweep to
+#: pass the body by: far beyond the float32 rounding of positions a few landblocks across
+#: (about 3e-5 m at 400 m), far below any shape.
+SHADOW_REACH_MARGIN = 0.01
+
+#: A box in landblock-global metres: x0, y0, z0, x1, y1, z1.
+Box = tuple[float, float, float, float, float, float]
+
+_INDEX = attrgetter("index")
+
 
 class CellSource(Protocol):
     """Where cells are looked up by id (retail ``CLandCell::Get`` / ``CEnvCell::GetVisible``)."""
@@ -88,13 +112,16 @@ class CellTransition(Protocol):
 
 
 class ShadowBody(Protocol):
-    """The body side of a shadow (``PhysicsObj``): its collisions with a sweep and with a body."""
+    """The body side of a shadow (``PhysicsObj``): its collisions with a sweep and with a body,
+    and the box its collision shapes fill (``CellMembership.collision_box``)."""
 
     parent: object | None
 
     def find_obj_collisions(self, transition: Any) -> TransitionState: ...
 
     def check_collision(self, obj: Any) -> bool: ...
+
+    def collision_box(self) -> Box | None: ...
 
 
 class BlockWater(Protocol):
@@ -106,14 +133,21 @@ class BlockWater(Protocol):
 
 
 class ShadowObj:
-    """Retail ``CShadowObj`` (acclient.h): a body's entry in one cell it overlaps."""
+    """Retail ``CShadowObj`` (acclient.h): a body's entry in one cell it overlaps.
 
-    __slots__ = ("cell", "cell_id", "physobj")
+    acphys adds where the entry stands in its cell's list (``index``) and, in a cell that files
+    its shadows, the body's box (``box``, None: asked by every sweep) and its square (``tile``).
+    """
+
+    __slots__ = ("box", "cell", "cell_id", "index", "physobj", "tile")
 
     def __init__(self, physobj: ShadowBody, cell_id: int = 0) -> None:
         self.physobj = physobj
         self.cell_id = cell_id
         self.cell: ObjCell | None = None
+        self.index = -1
+        self.box: Box | None = None
+        self.tile: tuple[int, int] | None = None
 
     def __repr__(self) -> str:
         return f"ShadowObj({self.physobj!r}, {format_cell_id(self.cell_id)})"
@@ -218,6 +252,8 @@ class ObjCell:
     """
 
     __slots__ = (
+        "_reach",
+        "_unfiled",
         "id",
         "landblock",
         "objects",
@@ -225,6 +261,7 @@ class ObjCell:
         "restriction_obj",
         "seen_outside",
         "shadow_objects",
+        "shadow_tiles",
         "stab_list",
         "voyeur_table",
         "water_type",
@@ -238,6 +275,12 @@ class ObjCell:
         self.pos = Position(cell_id)
         self.objects: list[PhysicsObj] = []
         self.shadow_objects: list[ShadowObj] = []
+        #: Not retail: with ``SHADOW_INDEX_MIN`` shadows or more, the filed ones by square
+        #: (``SHADOW_TILE``) of their box's centre, the others (no box, or too wide) in
+        #: ``_unfiled``, and ``_reach`` the widest half-width filed; None below that.
+        self.shadow_tiles: dict[tuple[int, int], set[ShadowObj]] | None = None
+        self._unfiled: set[ShadowObj] = set()
+        self._reach = 0.0
         #: Id of the object that guards entry (housing barriers); 0 for none.
         self.restriction_obj = 0
         self.stab_list: list[int] = []
@@ -363,19 +406,131 @@ class ObjCell:
 
     def add_shadow_object(self, shadow: ShadowObj, num_shadow_cells: int = 0) -> None:
         """Append ``shadow`` and point it at this cell (``num_shadow_cells`` is unused by retail).
+        A cell that files its shadows files it; the ``SHADOW_INDEX_MIN``-th starts the files.
 
         Retail: CObjCell::add_shadow_object @ 0x0052B280 (acclient.c:346804)
         """
+        shadow.index = len(self.shadow_objects)
         self.shadow_objects.append(shadow)
         shadow.cell = self
+        if self.shadow_tiles is not None:
+            self._file(shadow, shadow.physobj.collision_box())
+        elif len(self.shadow_objects) >= SHADOW_INDEX_MIN:
+            self._start_files()
 
     def remove_shadow_object(self, shadow: ShadowObj) -> None:
         """Remove ``shadow`` (by identity), clearing its cell; the last shadow takes its slot.
+        Below ``SHADOW_INDEX_DROP`` shadows the files are dropped.
 
         Retail: CObjCell::remove_shadow_object @ 0x0052B2D0 (acclient.c:346823)
         """
-        if _swap_remove(self.shadow_objects, shadow):
-            shadow.cell = None
+        shadows = self.shadow_objects
+        index = shadow.index
+        if not (0 <= index < len(shadows) and shadows[index] is shadow):
+            return
+        last = shadows.pop()
+        if last is not shadow:
+            shadows[index] = last
+            last.index = index
+        shadow.cell = None
+        shadow.index = -1
+        if self.shadow_tiles is not None:
+            self._unfile(shadow)
+            if len(shadows) < SHADOW_INDEX_DROP:
+                self._stop_files()
+
+    # --- the shadow files (not retail: the sweep asks only the bodies within its reach) ------
+
+    def refile_shadow(self, shadow: ShadowObj, box: Box | None) -> None:
+        """The body of ``shadow`` moved, turned or was scaled and its collision shapes now fill
+        ``box``: file it again (nothing to do in a cell that does not file its shadows)."""
+        if self.shadow_tiles is None:
+            return
+        self._unfile(shadow)
+        self._file(shadow, box)
+
+    def _start_files(self) -> None:
+        self.shadow_tiles = {}
+        self._unfiled = set()
+        self._reach = 0.0
+        for shadow in self.shadow_objects:
+            self._file(shadow, shadow.physobj.collision_box())
+
+    def _stop_files(self) -> None:
+        self.shadow_tiles = None
+        self._unfiled = set()
+        for shadow in self.shadow_objects:
+            shadow.box = shadow.tile = None
+
+    def _file(self, shadow: ShadowObj, box: Box | None) -> None:
+        """File ``shadow`` by the centre of ``box``; no box, or one wider than two squares, goes to
+        ``_unfiled`` (asked by every sweep)."""
+        assert self.shadow_tiles is not None
+        shadow.box = box
+        shadow.tile = None
+        if box is not None:
+            x0, y0, _, x1, y1, _ = box
+            half = 0.5 * max(x1 - x0, y1 - y0)
+            if half <= SHADOW_TILE:
+                cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+                shadow.tile = (math.floor(cx / SHADOW_TILE), math.floor(cy / SHADOW_TILE))
+                self._reach = max(self._reach, half)
+                self.shadow_tiles.setdefault(shadow.tile, set()).add(shadow)
+                return
+        self._unfiled.add(shadow)
+
+    def _unfile(self, shadow: ShadowObj) -> None:
+        assert self.shadow_tiles is not None
+        if shadow.tile is None:
+            self._unfiled.discard(shadow)
+            return
+        square = self.shadow_tiles[shadow.tile]
+        square.discard(shadow)
+        if not square:
+            del self.shadow_tiles[shadow.tile]
+
+    def _shadows_in_reach(self, path: SpherePath, after: int) -> list[ShadowObj]:
+        """The shadows listed after position ``after`` that a sweep at ``check_pos`` could touch,
+        in list order: the unfiled ones and the filed ones whose box comes within
+        ``SHADOW_REACH_MARGIN`` of the box around ``global_sphere`` (all of them when a sphere is
+        not finite). Any other body is farther from every moving sphere than their radii and the
+        margin, where its ``find_obj_collisions`` could only answer OK and change nothing.
+        """
+        tiles = self.shadow_tiles
+        assert tiles is not None
+        sweep = _sphere_box(path)
+        if sweep is None:
+            return self.shadow_objects[after + 1 :]
+        margin = SHADOW_REACH_MARGIN
+        x0, y0, z0 = sweep[0] - margin, sweep[1] - margin, sweep[2] - margin
+        x1, y1, z1 = sweep[3] + margin, sweep[4] + margin, sweep[5] + margin
+        reach = self._reach
+        tx0, tx1 = math.floor((x0 - reach) / SHADOW_TILE), math.floor((x1 + reach) / SHADOW_TILE)
+        ty0, ty1 = math.floor((y0 - reach) / SHADOW_TILE), math.floor((y1 + reach) / SHADOW_TILE)
+        squares: Any = tiles.values()
+        if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) < len(tiles):
+            squares = [
+                square
+                for tx in range(tx0, tx1 + 1)
+                for ty in range(ty0, ty1 + 1)
+                if (square := tiles.get((tx, ty))) is not None
+            ]
+        found = [
+            shadow
+            for square in squares
+            for shadow in square
+            if shadow.index > after
+            and (box := shadow.box) is not None
+            and box[0] <= x1
+            and box[3] >= x0
+            and box[1] <= y1
+            and box[4] >= y0
+            and box[2] <= z1
+            and box[5] >= z0
+        ]
+        found.extend(shadow for shadow in self._unfiled if shadow.index > after)
+        found.sort(key=_INDEX)
+        return found
 
     # --- collisions -----------------------------------------------------------------------
 
@@ -387,17 +542,37 @@ class ObjCell:
 
         Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
         """
-        if transition.sphere_path.insert_type == InsertType.INITIAL_PLACEMENT:
+        path = transition.sphere_path
+        if path.insert_type == InsertType.INITIAL_PLACEMENT:
             return TS.OK
         result = TS.OK
         mover = transition.object_info.object
-        for shadow in list(self.shadow_objects):
+        if self.shadow_tiles is None:
+            for shadow in list(self.shadow_objects):
+                body = shadow.physobj
+                if body.parent is not None or body is mover:
+                    continue
+                result = body.find_obj_collisions(transition)
+                if result != TS.OK:
+                    break
+            return result
+        # A filed cell asks, in the same order, only the bodies the spheres could touch; a body
+        # that answers OK may have moved them (a step up), and the rest are then found again.
+        pending = self._shadows_in_reach(path, -1)
+        next_index = 0
+        while next_index < len(pending):
+            shadow = pending[next_index]
+            next_index += 1
             body = shadow.physobj
             if body.parent is not None or body is mover:
                 continue
+            sweep = _sweep_key(path)
             result = body.find_obj_collisions(transition)
             if result != TS.OK:
                 break
+            if _sweep_key(path) != sweep:
+                pending = self._shadows_in_reach(path, shadow.index)
+                next_index = 0
         return result
 
     def check_collisions(self, obj: ShadowBody) -> bool:
@@ -582,6 +757,47 @@ class ObjCell:
             for cyl in cylspheres[:MAX_CYLSPHERE_CELL_LIST]
         ]
         ObjCell.find_cell_list(p, spheres, cell_array, path)
+
+
+def _sphere_box(path: SpherePath) -> Box | None:
+    """The box around the sweep's spheres (``global_sphere``, in ``check_pos``'s landblock), in
+    landblock-global metres; None without spheres or when one is not finite.
+
+    Every centre is given the largest radius: the sphere tests measure the second sphere with
+    the first one's radius (``radsum`` in ``CSphere::intersects_sphere`` and
+    ``step_sphere_down``, acclient.c:359211, 358647), which may be the larger.
+    """
+    spheres = path.global_sphere
+    if not spheres:
+        return None
+    radius = 0.0
+    for sphere in spheres:
+        if not math.isfinite(sphere.radius):
+            return None
+        if sphere.radius > radius:
+            radius = sphere.radius
+    xs = [sphere.center.x for sphere in spheres]
+    ys = [sphere.center.y for sphere in spheres]
+    zs = [sphere.center.z for sphere in spheres]
+    if not math.isfinite(sum(xs) + sum(ys) + sum(zs)):
+        return None
+    cell_id = path.check_pos.objcell_id
+    bx, by = ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH, ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH
+    return (
+        min(xs) - radius + bx,
+        min(ys) - radius + by,
+        min(zs) - radius,
+        max(xs) + radius + bx,
+        max(ys) + radius + by,
+        max(zs) + radius,
+    )
+
+
+def _sweep_key(path: SpherePath) -> tuple[int, list[tuple[float, float, float, float]]]:
+    """What a body's answer may change of the sweep: its cell and its spheres."""
+    return path.check_pos.objcell_id, [
+        (sphere.center.x, sphere.center.y, sphere.center.z, sphere.radius) for sphere in path.global_sphere
+    ]
 
 
 def _swap_remove(items: list, item: object) -> bool:

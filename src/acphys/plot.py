@@ -19,15 +19,17 @@ import sys
 import warnings
 from array import array
 from collections import Counter
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
+from itertools import islice
 from pathlib import Path
 from typing import Any
 
 from acphys.constants import BLOCK_LENGTH
+from acphys.inputs import one_line
 from acphys.math.cell_id import landblock_of
 from acphys.physics_obj import PhysicsObj
-from acphys.trace import TraceError, brief, printable, read_trace, step_record
+from acphys.trace import TraceError, brief, read_trace, step_record
 
 #: The panels ``--view`` can pick; without it the figure has ``top`` and ``height``.
 VIEWS = ("top", "side", "height")
@@ -94,13 +96,15 @@ class Points:
     def add(self, t: float, x: float, y: float, z: float) -> int:
         """Add the latest sample; returns how many more samples are kept (0 or 1)."""
         replace = self.added > 0 and (self.added - 1) % self.stride != 0  # the latest, off the stride
-        for values, value in ((self.t, t), (self.x, x), (self.y, y), (self.z, z)):
-            if replace:
-                values[-1] = value
-            else:
-                values.append(value)
         self.added += 1
-        return 0 if replace else 1
+        if replace:
+            self.t[-1], self.x[-1], self.y[-1], self.z[-1] = t, x, y, z
+            return 0
+        self.t.append(t)
+        self.x.append(x)
+        self.y.append(y)
+        self.z.append(z)
+        return 1
 
     def thin(self) -> int:
         """Double the stride, keeping every other sample on it and the latest; returns how many went."""
@@ -157,16 +161,47 @@ def global_xy(cell_id: int, x: float, y: float) -> tuple[float, float]:
 
 def shown_name(name: str, limit: int = SHOWN_NAME) -> str:
     """A name as a picture shows it: unprintable characters escaped, cut to ``limit`` characters."""
-    text = printable(name)
+    text = one_line(name)
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 def _number(value: Any) -> bool:
+    """Whether ``value`` is a JSON number a picture draws: finite, within :data:`MAX_MAGNITUDE`."""
+    if type(value) is float:  # the common case, first (NaN fails both comparisons)
+        return -MAX_MAGNITUDE <= value <= MAX_MAGNITUDE
     return isinstance(value, (int, float)) and not isinstance(value, bool) and abs(value) <= MAX_MAGNITUDE
 
 
+def _point(value: Any) -> bool:
+    """Whether ``value`` is 3 floats a picture draws (:func:`_number`'s common case, in one call)."""
+    if type(value) is not list or len(value) != 3:
+        return False
+    x, y, z = value
+    return (
+        type(x) is float
+        and type(y) is float
+        and type(z) is float
+        and -MAX_MAGNITUDE <= x <= MAX_MAGNITUDE
+        and -MAX_MAGNITUDE <= y <= MAX_MAGNITUDE
+        and -MAX_MAGNITUDE <= z <= MAX_MAGNITUDE
+    )
+
+
+def _strings(value: Any) -> bool:
+    return isinstance(value, list) and (not value or all(isinstance(item, str) for item in value))
+
+
+def _at(where: str, line: int | None) -> str:
+    return where if line is None else f"{where}:{line}"
+
+
+#: What a record without ``transient`` or ``events`` has (never changed).
+_NO_STRINGS: list[str] = []
 _BOUNDED = f"finite and within ±{MAX_MAGNITUDE:.2g} (the float32 range)"
 _CELL = re.compile(r"0x[0-9A-Fa-f]{1,8}")
+#: How many cells' landblock corners a collector remembers (a trace visits a few; a hostile one
+#: could name millions).
+_CELL_CACHE = 4096
 
 
 class PathCollector:
@@ -178,10 +213,49 @@ class PathCollector:
     def __init__(self) -> None:
         self.paths: dict[str, BodyPath] = {}
         self._kinds: dict[str, str] = {}
+        self._corners: dict[str, tuple[float, float]] = {}
         self._kept = 0
 
-    def add(self, record: dict[str, Any], where: str) -> None:
-        """Add one record; ``where`` (``file:line``) prefixes any :class:`TraceError`."""
+    def add(self, record: dict[str, Any], where: str, line: int | None = None) -> None:
+        """Add one record; ``where`` (the file, or ``<run>:body``) and ``line`` prefix any
+        :class:`TraceError`."""
+        t, body, quantum = record.get("t"), record.get("body"), record.get("quantum", 0.0)
+        cell, origin = record.get("cell"), record.get("origin")
+        transient, events = record.get("transient", _NO_STRINGS), record.get("events", _NO_STRINGS)
+        corner = self._corners.get(cell) if type(cell) is str else None
+        if not (  # what acphys writes, checked without a call; anything else by _check
+            corner is not None
+            and type(t) is float
+            and type(quantum) is float
+            and type(body) is str
+            and -MAX_MAGNITUDE <= t <= MAX_MAGNITUDE
+            and -MAX_MAGNITUDE <= quantum <= MAX_MAGNITUDE
+            and _point(origin)
+            and _strings(transient)
+            and (not events or _strings(events))
+        ):
+            corner = self._check(record, _at(where, line))
+        path = self.paths.get(body)
+        if path is None:
+            path = self._new_path(body, cell, origin, _at(where, line))
+        t, gx, gy, z = float(t), corner[0] + origin[0], corner[1] + origin[1], float(origin[2])
+        if path.added:
+            step = math.dist((path.x[-1], path.y[-1], path.z[-1]), (gx, gy, z))
+            path.distance += step
+            if t > path.t[-1]:
+                path.max_speed = max(path.max_speed, step / (t - path.t[-1]))
+        if "contact" in transient:
+            path.contact_time += quantum
+        self._kept += path.add(t, gx, gy, z)
+        if events:
+            self._events(path, events, (t, gx, gy, z), where, line)
+        path.last_cell, path.last_origin = cell, tuple(origin)
+        if self._kept > MAX_POINTS:
+            self._thin()
+
+    def _check(self, record: dict[str, Any], where: str) -> tuple[float, float]:
+        """Refuse the first key of ``record`` a picture cannot use; returns the corner of its cell's
+        landblock, in landblock-global metres (remembered for the next record in that cell)."""
         t, body, quantum = record.get("t"), record.get("body"), record.get("quantum", 0.0)
         if not _number(t):
             raise TraceError(f"{where}: t must be a number, {_BOUNDED}, got {brief(t)}")
@@ -195,31 +269,32 @@ class PathCollector:
         origin = record.get("origin")
         if not (isinstance(origin, list) and len(origin) == 3 and all(_number(v) for v in origin)):
             raise TraceError(f"{where}: origin must be 3 numbers, {_BOUNDED}, got {brief(origin)}")
-        transient = record.get("transient", [])
-        events = record.get("events", [])
-        for key, value in (("transient", transient), ("events", events)):
-            if not (isinstance(value, list) and all(isinstance(item, str) for item in value)):
+        for key in ("transient", "events"):
+            value = record.get(key, _NO_STRINGS)
+            if not _strings(value):
                 raise TraceError(f"{where}: {key} must be a list of strings, got {brief(value)}")
-        path = self.paths.get(body) or self._new_path(body, cell, origin, where)
-        gx, gy = global_xy(int(cell, 16), origin[0], origin[1])
-        t, z = float(t), float(origin[2])
-        if path.added:
-            step = math.dist((path.x[-1], path.y[-1], path.z[-1]), (gx, gy, z))
-            path.distance += step
-            if t > path.t[-1]:
-                path.max_speed = max(path.max_speed, step / (t - path.t[-1]))
-        if "contact" in transient:
-            path.contact_time += quantum
-        self._kept += path.add(t, gx, gy, z)
+        if len(self._corners) == _CELL_CACHE:
+            self._corners.clear()
+        corner = self._corners[cell] = global_xy(int(cell, 16), 0.0, 0.0)
+        return corner
+
+    def _events(
+        self,
+        path: BodyPath,
+        events: list[str],
+        sample: tuple[float, float, float, float],
+        where: str,
+        line: int | None,
+    ) -> None:
+        """Count a record's events by kind, and mark where the marked kinds happened."""
         for kind, count in Counter(map(event_kind, events)).items():
-            kind = self._kind(kind, where)
+            kind = self._kind(kind, where, line)
             path.events[kind] += count
             if kind in EVENT_MARKERS:
-                marks = path.marks.get(kind) or path.marks.setdefault(kind, Points())
-                self._kept += marks.add(t, gx, gy, z)
-        path.last_cell, path.last_origin = cell, tuple(origin)
-        if self._kept > MAX_POINTS:
-            self._thin()
+                marks = path.marks.get(kind)
+                if marks is None:
+                    marks = path.marks[kind] = Points()
+                self._kept += marks.add(*sample)
 
     def _new_path(self, body: str, cell: str, origin: list[float], where: str) -> BodyPath:
         if len(body) > MAX_NAME_LENGTH:
@@ -231,14 +306,14 @@ class PathCollector:
         path = self.paths[body] = BodyPath(name=body, first_cell=cell, first_origin=tuple(origin))
         return path
 
-    def _kind(self, kind: str, where: str) -> str:
+    def _kind(self, kind: str, where: str, line: int | None) -> str:
         """``kind``, one string object for all bodies; a new kind past the limit is refused."""
         known = self._kinds.get(kind)
         if known is None:
             if len(self._kinds) == MAX_EVENT_KINDS:
                 raise TraceError(
-                    f"{where}: more than {MAX_EVENT_KINDS} kinds of event, the limit for a picture "
-                    f"(acphys writes about 25); the next is {brief(kind)}"
+                    f"{_at(where, line)}: more than {MAX_EVENT_KINDS} kinds of event, the limit for a "
+                    f"picture (acphys writes about 25); the next is {brief(kind)}"
                 )
             known = self._kinds[kind] = kind
         return known
@@ -261,9 +336,9 @@ def read_paths(trace: str | Path) -> dict[str, BodyPath]:
     malformed trace, and for one with no records.
     """
     collector = PathCollector()
-    label = printable(str(trace))
+    label = one_line(str(trace))
     for line, record in read_trace(trace):
-        collector.add(record, f"{label}:{line}")
+        collector.add(record, label, line)
     if not collector.paths:
         raise TraceError(f"{label}: the trace has no records")
     return collector.paths
@@ -293,7 +368,7 @@ class PathRecorder:
                 body.observer = None
 
     def record_step(self, body: PhysicsObj, quantum: float) -> None:
-        self._collector.add(step_record(body, quantum), f"<run>:{printable(body.name)}")
+        self._collector.add(step_record(body, quantum), f"<run>:{one_line(body.name)}")
 
 
 def parse_bodies(text: str | None) -> list[str] | None:
@@ -312,22 +387,30 @@ def select_bodies(paths: dict[str, BodyPath], names: Sequence[str] | None) -> li
         return list(paths.values())
     unknown = [name for name in names if name not in paths]
     if unknown:
-        have = ", ".join(paths) or "none"
-        raise PlotError(f"no body named {', '.join(map(repr, unknown))} in the trace (it has: {have})")
+        raise PlotError(
+            f"no body named {', '.join(map(repr, unknown))} in the trace (it has: {_some(paths)})"
+        )
     return [paths[name] for name in dict.fromkeys(names)]
+
+
+def _some(names: Collection[str]) -> str:
+    """The first :data:`LEGEND_BODIES` names as a message shows them (one line), and how many more."""
+    shown = ", ".join(shown_name(name) for name in islice(names, LEGEND_BODIES)) or "none"
+    more = len(names) - LEGEND_BODIES
+    return f"{shown} and {more:,} more" if more > 0 else shown
 
 
 def check_output(output: str | Path) -> Path:
     """The picture's path, if it can be written there (checked before any work is done)."""
     path = Path(output)
-    label = printable(str(path))
+    label = one_line(str(path))
     if path.is_dir():
         raise PlotError(f"{label}: is a directory, not a PNG file")
     if path.is_fifo() or path.is_socket():  # a pipe would block the write until someone reads it
         raise PlotError(f"{label}: cannot write: not a regular file")
     parent = path.parent
     if not parent.is_dir():
-        raise PlotError(f"{label}: cannot write: no directory {printable(str(parent))!r}")
+        raise PlotError(f"{label}: cannot write: no directory {one_line(str(parent))!r}")
     return path
 
 
@@ -353,7 +436,7 @@ def write_plot(
     on stderr.
     """
     output = check_output(output)
-    label = printable(str(output))
+    label = one_line(str(output))
     with warnings.catch_warnings(record=True) as caught, _user_text_is_plain():
         warnings.simplefilter("always")
         figure = make_figure(paths, bodies, view, title)
@@ -380,7 +463,7 @@ def thinning(paths: Sequence[BodyPath]) -> str:
 
 def _matplotlib_warnings(caught: list[warnings.WarningMessage]) -> list[str]:
     """matplotlib's warnings, each once and on one line; missing glyphs are one warning."""
-    messages = dict.fromkeys(printable(str(warning.message)) for warning in caught)
+    messages = dict.fromkeys(one_line(str(warning.message)) for warning in caught)
     glyphs = [message for message in messages if _MISSING_GLYPH.match(message)]
     found = [message for message in messages if message not in glyphs]
     if glyphs:

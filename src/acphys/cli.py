@@ -17,11 +17,13 @@ from typing import NoReturn
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
+from rich.text import Text
 
 from acphys import __version__
 from acphys.bench import run_suite
 from acphys.dat import REGION_ID, DatError, DatFile, unpack_region, unpack_setup
 from acphys.flags import TransientState, flag_names
+from acphys.inputs import InputError, one_line
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
 from acphys.plot import (
@@ -32,6 +34,7 @@ from acphys.plot import (
     parse_bodies,
     read_paths,
     select_bodies,
+    shown_name,
     write_plot,
 )
 from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenarios, load_scenario
@@ -42,6 +45,12 @@ from acphys.view import show
 
 #: Runs with more driver ticks than this show a progress bar (on a terminal).
 PROGRESS_TICKS = 20_000
+#: The most bodies and simulated seconds ``acphys bench`` takes, and the most of their product: a
+#: workload runs some 3,000 body-steps a second (30 a body-second), so 100,000 body-seconds are
+#: about half an hour a workload; more is a mistake, refused rather than started.
+MAX_BENCH_BODIES = 100_000
+MAX_BENCH_SECONDS = 3600.0
+MAX_BENCH_BODY_SECONDS = 100_000
 
 EXIT_DIVERGED = 1
 EXIT_BAD_INPUT = 2
@@ -158,18 +167,23 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "dat":
             return _dat(console, args)
         return _diff(console, args.a, args.b, args.tol)
-    except (ScenarioError, TraceError, PlotError, DatError) as error:
-        return _fail(str(error), EXIT_BAD_INPUT)
+    except ScenarioError as error:
+        return _fail("\n".join(one_line(problem) for problem in error.problems), EXIT_BAD_INPUT)
+    except (TraceError, PlotError, DatError) as error:
+        return _fail(one_line(str(error)), EXIT_BAD_INPUT)
     except OSError as error:
-        return _fail(f"{error.filename or ''}: {error.strerror or error}", EXIT_BAD_INPUT)
+        return _fail(one_line(f"{error.filename or ''}: {error.strerror or error}"), EXIT_BAD_INPUT)
     except KeyboardInterrupt:
         return _fail("interrupted", EXIT_BAD_INPUT)
     except Exception as error:  # an acphys bug: still one line, but say so
-        return _fail(f"internal error ({type(error).__name__}: {error}); please report it", EXIT_INTERNAL)
+        return _fail(
+            one_line(f"internal error ({type(error).__name__}: {error}); please report it"), EXIT_INTERNAL
+        )
 
 
 def _fail(message: str, code: int) -> int:
-    """Print ``message``, one ``acphys: error:`` line per problem (a scenario can have several)."""
+    """Print ``message``, one ``acphys: error:`` line per problem (a scenario can have several);
+    what the message quotes of the user's (a path, a name) is escaped to one line before."""
     for line in message.splitlines() or [""]:
         print(f"acphys: error: {line}", file=sys.stderr)
     return code
@@ -183,6 +197,10 @@ def _run(
     end = sim.duration if until is None else until
     if not (math.isfinite(end) and end >= 0.0):
         return _fail(f"--until must be a non-negative number of seconds, got {until}", EXIT_BAD_INPUT)
+    try:
+        sim.check_until(end)
+    except ValueError as error:
+        return _fail(f"--until: {error}", EXIT_BAD_INPUT)
     if plot is not None:
         check_output(plot)
     # --plot without --trace keeps the paths in memory; with it, reads them back from the trace.
@@ -196,11 +214,11 @@ def _run(
             recorder.detach(sim.bodies)
     console.print(_summary(sim))
     if trace is not None:
-        console.print(f"trace: {trace}")
+        _say(console, f"trace: {trace}")
     if plot is not None:
         paths = recorder.paths if recorder is not None else read_paths(str(trace))
         write_plot(paths, plot, title=f"{sim.name}: {sim.time:g} s")
-        console.print(f"plot: {plot}")
+        _say(console, f"plot: {plot}")
     return 0
 
 
@@ -222,13 +240,20 @@ def _drive(console: Console, sim: Simulation, end: float, trace: str | None) -> 
         sim.run(until=end, trace=trace)
 
 
+def _say(console: Console, text: str) -> None:
+    """Print one line that holds the user's text (a path, a name): escaped to one line, never read
+    as rich markup (``[/]`` in a name would be a MarkupError) nor highlighted."""
+    console.print(one_line(text), markup=False, highlight=False, soft_wrap=True)
+
+
 def _summary(sim: Simulation) -> Table:
-    table = Table(title=f"{sim.name}: {sim.time:g} s simulated, {_count(len(sim.bodies), 'body', 'bodies')}")
+    bodies = _count(len(sim.bodies), "body", "bodies")
+    table = Table(title=Text(one_line(f"{sim.name}: {sim.time:g} s simulated, {bodies}")))
     for column in ("body", "cell", "origin (m)", "heading", "velocity (m/s)", "transient"):
         table.add_column(column, no_wrap=column != "transient")
     for body in sim.bodies:
         table.add_row(
-            body.name,
+            Text(one_line(body.name)),
             format_cell_id(body.position.objcell_id),
             _triple(body.position.frame.origin),
             f"{body.position.frame.get_heading():.1f}°",
@@ -256,10 +281,7 @@ def _check(console: Console, scenario: str) -> int:
     _warn(sim)
     bodies = _count(len(sim.bodies), "body", "bodies")
     events = _count(len(sim.events), "event", "events")
-    console.print(
-        f"ok: {sim.name}: {bodies}, {events}, {sim.duration:g} s at {sim.driver_hz:g} Hz",
-        soft_wrap=True,
-    )
+    _say(console, f"ok: {sim.name}: {bodies}, {events}, {sim.duration:g} s at {sim.driver_hz:g} Hz")
     return 0
 
 
@@ -273,7 +295,9 @@ def _show(name: str) -> int:
         sys.stdout.write(builtin_motion_table_text(name))
         return 0
     known = ", ".join([*builtin_scenarios(), *builtin_motion_tables()])
-    return _fail(f"{name}: no built-in scenario or motion table (built-in: {known})", EXIT_BAD_INPUT)
+    return _fail(
+        f"{shown_name(name)}: no built-in scenario or motion table (built-in: {known})", EXIT_BAD_INPUT
+    )
 
 
 def _diff(console: Console, a: str, b: str, tol: float) -> int:
@@ -291,7 +315,7 @@ def _plot(console: Console, trace: str, output: str, bodies: str | None, view: s
     names = parse_bodies(bodies)
     check_output(output)
     write_plot(read_paths(trace), output, bodies=names, view=view, title=Path(trace).name)
-    console.print(f"plot: {output}")
+    _say(console, f"plot: {output}")
     return 0
 
 
@@ -304,10 +328,18 @@ def _view(console: Console, trace: str, bodies: str | None) -> int:
 
 
 def _bench(console: Console, bodies: int, seconds: float, json_file: str | None) -> int:
-    if bodies < 1 or bodies > 100_000:
-        return _fail(f"--bodies must be between 1 and 100000, got {bodies}", EXIT_BAD_INPUT)
-    if not (math.isfinite(seconds) and 0.0 < seconds <= 3600.0):
-        return _fail(f"--seconds must be in (0, 3600], got {seconds}", EXIT_BAD_INPUT)
+    if not 1 <= bodies <= MAX_BENCH_BODIES:
+        return _fail(f"--bodies must be between 1 and {MAX_BENCH_BODIES}, got {bodies}", EXIT_BAD_INPUT)
+    if not (math.isfinite(seconds) and 0.0 < seconds <= MAX_BENCH_SECONDS):
+        return _fail(f"--seconds must be in (0, {MAX_BENCH_SECONDS:g}], got {seconds}", EXIT_BAD_INPUT)
+    if bodies * seconds > MAX_BENCH_BODY_SECONDS:
+        return _fail(
+            f"--bodies {bodies} for --seconds {seconds:g} is {bodies * seconds:,.0f} body-seconds, "
+            f"more than the {MAX_BENCH_BODY_SECONDS:,} a bench may take",
+            EXIT_BAD_INPUT,
+        )
+    if json_file is not None:
+        _check_output_file(json_file)
     results = run_suite(bodies, seconds)
     table = Table(title=f"acphys bench: {bodies} bodies, {seconds:g} s simulated")
     for column in ("workload", "body-steps", "seconds", "steps/s", "vs baseline", "vs landblock real time"):
@@ -325,8 +357,18 @@ def _bench(console: Console, bodies: int, seconds: float, json_file: str | None)
     if json_file is not None:
         figures = json.dumps([result.as_dict() for result in results], indent=2)
         Path(json_file).write_text(figures + "\n", encoding="utf-8")
-        console.print(f"figures: {json_file}")
+        _say(console, f"figures: {json_file}")
     return 0
+
+
+def _check_output_file(path: str) -> None:
+    """Refuse (InputError) an output path that is not a regular file or has no folder, before the work
+    that fills it is done (a FIFO would block the write until something reads it)."""
+    target = Path(path)
+    if target.exists() and not target.is_file():
+        raise InputError(path, "cannot write: not a regular file")
+    if not target.parent.is_dir():
+        raise InputError(path, f"cannot write: no folder {target.parent}")
 
 
 def _dat(console: Console, args: argparse.Namespace) -> int:
@@ -351,7 +393,7 @@ def _dat(console: Console, args: argparse.Namespace) -> int:
 def _dat_info(console: Console, dat: DatFile) -> None:
     header = dat.header
     lines = [
-        f"file: {dat.path}",
+        one_line(f"file: {dat.path}"),
         f"data set: {header.data_set_name} (subset {header.data_subset})",
         f"block size: {header.block_size} bytes; file size: {header.file_size} bytes",
         f"free blocks: {header.free_blocks} (first {header.first_free:#x}, last {header.final_free:#x})",
@@ -361,7 +403,7 @@ def _dat_info(console: Console, dat: DatFile) -> None:
         f"records: {sum(1 for _ in dat.entries())}",
     ]
     for line in lines:
-        console.print(line, highlight=False, soft_wrap=True)
+        console.print(line, markup=False, highlight=False, soft_wrap=True)
 
 
 def _dat_setup(console: Console, dat: DatFile, setup_id: int) -> None:

@@ -34,13 +34,16 @@ class InputError(OSError):
     """An input file acphys refuses; ``str()`` is one line: the path, then the problem.
 
     An ``OSError`` (``filename`` is the path, ``strerror`` the problem), so code that reports
-    the errors of ``open`` reports these too.
+    the errors of ``open`` reports these too; ``errno`` is that of the failed system call, so a
+    caller can still tell a missing file (``ENOENT``) from one it may not read.
     """
 
-    def __init__(self, path: str | os.PathLike[str], problem: str) -> None:
+    def __init__(self, path: str | os.PathLike[str], problem: str, errno: int | None = None) -> None:
         super().__init__(problem)
         self.filename = os.fspath(path)
         self.strerror = problem
+        #: The ``errno`` of the failed call behind the refusal (``ENOENT`` for a missing file), if any.
+        self.errno = errno
 
     def __str__(self) -> str:
         return f"{one_line(self.filename)}: {self.strerror}"
@@ -69,7 +72,7 @@ def check_regular(path: str | os.PathLike[str]) -> None:
     except ValueError:  # os.stat's "embedded null byte"
         raise InputError(path, "a path cannot hold a NUL byte") from None
     except OSError as error:
-        raise InputError(path, _problem(error)) from None
+        raise InputError(path, _problem(error), error.errno) from None
     _refuse_special(path, mode)
 
 
@@ -83,7 +86,7 @@ def open_regular(path: str | os.PathLike[str]) -> BinaryIO:
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY)
     except OSError as error:
-        raise InputError(path, _problem(error)) from None
+        raise InputError(path, _problem(error), error.errno) from None
     try:
         _refuse_special(path, os.fstat(fd).st_mode)
     except InputError:
@@ -100,7 +103,7 @@ def read_limited(path: str | os.PathLike[str], limit: int, what: str) -> bytes:
         try:
             data = file.read(limit + 1)
         except OSError as error:
-            raise InputError(path, _problem(error)) from None
+            raise InputError(path, _problem(error), error.errno) from None
     if len(data) > limit:
         raise InputError(path, f"larger than {what} ({limit:,} bytes)")
     return data

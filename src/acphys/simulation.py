@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from acphys.constants import MIN_QUANTUM
+from acphys.constants import HUGE_QUANTUM, MIN_QUANTUM
 from acphys.physics_obj import PhysicsObj
 from acphys.world.world import World
 
@@ -101,6 +101,15 @@ class Event:
 
 #: The driver clock ticks on a grid of 2^-30 s (about a nanosecond).
 CLOCK_GRID = 2.0**30
+#: The slowest driver, a tick every ``HUGE_QUANTUM`` (2 s): on a slower one every quantum would be
+#: longer than that, which ``update_object`` discards, so no body would ever move.
+MIN_DRIVER_HZ = 1.0 / HUGE_QUANTUM
+#: The fastest driver (a tick every 0.1 ms; bodies still run at most at 30 Hz).
+MAX_DRIVER_HZ = 1e4
+#: The most driver ticks one run may take: a scenario's longest duration (10^6 s, 11.6 days) at
+#: the usual 60 Hz. Even an empty world takes about a microsecond a tick and a body some 0.2 ms
+#: a step, so a run past this would take days: a mistake, refused rather than started.
+MAX_DRIVER_TICKS = 60_000_000
 
 
 def driver_tick_seconds(driver_hz: float) -> float:
@@ -133,8 +142,10 @@ class Simulation:
         duration: float = 10.0,
         name: str = "",
     ) -> None:
-        if not driver_hz > 0.0:
-            raise ValueError(f"driver_hz must be positive, got {driver_hz}")
+        if not MIN_DRIVER_HZ <= driver_hz <= MAX_DRIVER_HZ:
+            raise ValueError(
+                f"driver_hz must be in [{MIN_DRIVER_HZ:g}, {MAX_DRIVER_HZ:g}] Hz, got {driver_hz}"
+            )
         self.world = world
         self.physics = Physics(world)
         self.driver_hz = driver_hz
@@ -187,6 +198,18 @@ class Simulation:
             self._next_event += 1
         self.physics.use_time()
 
+    def check_until(self, until: float) -> None:
+        """Refuse (ValueError) a time to run to that is not a finite number of seconds, or that
+        lies more than ``MAX_DRIVER_TICKS`` driver ticks ahead."""
+        if not math.isfinite(until):
+            raise ValueError(f"until must be a finite number of seconds, got {until}")
+        ticks = (until - self.time) * self.driver_hz
+        if ticks > MAX_DRIVER_TICKS:
+            raise ValueError(
+                f"running to {until:g} s at {self.driver_hz:g} Hz is {ticks:.3g} driver ticks, "
+                f"more than the {MAX_DRIVER_TICKS:,} a run may take (MAX_DRIVER_TICKS)"
+            )
+
     def run(
         self,
         until: float | None = None,
@@ -195,9 +218,11 @@ class Simulation:
     ) -> None:
         """Run the driver until ``until`` seconds (default: the duration), writing a trace if asked.
 
-        ``progress(now, end)`` is called after every tick when given.
+        ``progress(now, end)`` is called after every tick when given. An ``until`` that is not
+        finite, or more than ``MAX_DRIVER_TICKS`` ticks away, is a ValueError (:meth:`check_until`).
         """
         end = self.duration if until is None else until
+        self.check_until(end)
         if trace is None:
             self._run_until(end, progress)
             return

@@ -24,9 +24,8 @@ they declare (inflated with that bound, never in full first).
 
 from __future__ import annotations
 
+import errno
 import itertools
-import os
-import stat
 import struct
 import zlib
 from collections.abc import Iterator
@@ -35,7 +34,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import BinaryIO
 
-from acphys.inputs import one_line
+from acphys.inputs import InputError, one_line, open_regular
 
 #: ``DiskFileInfo_t`` file offset and size (acclient.c:651034 reads 0x50 bytes at 320).
 HEADER_OFFSET = 0x140
@@ -73,8 +72,6 @@ MAX_RECORD_SIZE = 16 * 1024 * 1024
 #: ``data_set_lm`` values (``DATFILE_TYPE``, acclient.h:3116).
 DATA_SETS = {1: "portal", 2: "cell", 3: "local"}
 
-#: Read-only, without waiting for a FIFO's writer or taking a terminal (where the OS has these).
-_OPEN_FLAGS = os.O_RDONLY | sum(getattr(os, name, 0) for name in ("O_NONBLOCK", "O_NOCTTY", "O_BINARY"))
 _HEADER = struct.Struct("<15I16sI")
 _ENTRY = struct.Struct("<6I")
 _U32 = struct.Struct("<I")
@@ -155,7 +152,7 @@ class DatFile:
 
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
-        self._file: BinaryIO = _open_regular(self.path)
+        self._file: BinaryIO = _open_dat(self.path)
         try:
             self._size = self._file.seek(0, 2)
             self.header = self._read_header()
@@ -180,7 +177,7 @@ class DatFile:
 
     def _error(self, message: str, offset: int | None = None) -> DatError:
         where = f" at offset {offset:#x}" if offset is not None else ""
-        return DatError(f"{self.path}{where}: {message}")
+        return DatError(f"{one_line(str(self.path))}{where}: {message}")
 
     def _read_at(self, offset: int, size: int, lead: str = "") -> bytes:
         """``size`` bytes at ``offset``, or a DatError (``lead`` first) if the file ends first (a
@@ -442,38 +439,17 @@ class DatFile:
         return (found.object_id for found in self.entries())
 
 
-def _open_regular(path: Path) -> BinaryIO:
-    """``path`` opened for reading if it is a regular file, else a DatError: a FIFO would block
-    (the open, or the reads) until something writes to it, and a device such as /dev/zero never
-    ends. The open itself does not wait (``O_NONBLOCK``) and the type is the open file's, so it
-    is the file that is checked that is read. A missing file is ``FileNotFoundError``, as from
-    ``open``."""
+def _open_dat(path: Path) -> BinaryIO:
+    """``path`` opened for reading by :func:`acphys.inputs.open_regular`, which refuses a path that
+    is not a regular file before any read (a FIFO would block until something writes to it, a
+    device such as /dev/zero never ends); a refusal is a DatError, a missing file
+    ``FileNotFoundError`` as from ``open``."""
     try:
-        fd = os.open(path, _OPEN_FLAGS)
-    except ValueError:  # os.open's "embedded null byte"
-        raise DatError(f"{one_line(str(path))}: a path cannot hold a NUL byte") from None
-    try:
-        mode = os.fstat(fd).st_mode
-        if not stat.S_ISREG(mode):
-            raise DatError(f"{path}: not a regular file ({_file_kind(mode)}); a DAT must be a file")
-        return os.fdopen(fd, "rb")
-    except BaseException:
-        os.close(fd)
-        raise
-
-
-def _file_kind(mode: int) -> str:
-    """What a non-regular file is, for the error message."""
-    for test, kind in (
-        (stat.S_ISDIR, "a directory"),
-        (stat.S_ISFIFO, "a FIFO"),
-        (stat.S_ISCHR, "a character device"),
-        (stat.S_ISBLK, "a block device"),
-        (stat.S_ISSOCK, "a socket"),
-    ):
-        if test(mode):
-            return kind
-    return f"file mode {stat.filemode(mode)}"
+        return open_regular(path)
+    except InputError as error:
+        if error.errno == errno.ENOENT:
+            raise FileNotFoundError(errno.ENOENT, error.strerror, str(path)) from None
+        raise DatError(str(error)) from None
 
 
 def _insertion_point(entries: tuple[DatEntry, ...], object_id: int) -> int:

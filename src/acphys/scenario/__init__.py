@@ -11,6 +11,7 @@ typo never passes silently.
 
 from __future__ import annotations
 
+import errno
 import math
 import tomllib
 from collections.abc import Callable
@@ -24,6 +25,7 @@ from acphys.flags import TransientState
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.plane import Plane
 from acphys.geometry.sphere import Sphere
+from acphys.inputs import InputError, one_line, read_limited
 from acphys.math.cell_id import FIRST_ENV_CELL
 from acphys.math.frame import Frame
 from acphys.math.position import Position
@@ -48,11 +50,20 @@ from acphys.scenario.world_data import (
     warn_outside_landblocks,
 )
 from acphys.setup import BUILTIN_SETUPS, LocationType, Setup, bounding_sphere
-from acphys.simulation import Event, Simulation
+from acphys.simulation import MAX_DRIVER_HZ, MAX_DRIVER_TICKS, MIN_DRIVER_HZ, Event, Simulation
 from acphys.world.world import World
 
 #: The scenario ``acphys run`` uses when none is given.
 DEFAULT_SCENARIO = "default"
+#: The largest scenario file read, in bytes. The largest scenario acphys measures (10,000 walking
+#: bodies and their events, benchmarks/scale.py) is 1.8 MB; tomllib reads about half a megabyte
+#: a second of its slowest text (an array of small numbers), so the 4 MiB allowed are read in
+#: about 10 s and 100 MB at worst, inside the command line's 30 s and 1 GB for any input.
+MAX_SCENARIO_BYTES = 4 * 1024 * 1024
+#: The most ``[[body]]`` a scenario may have: the most ``acphys bench`` drives (its scenarios are
+#: built from text, not read from a file, so the size limit does not bound them). A scenario file
+#: within ``MAX_SCENARIO_BYTES`` holds at most some 40,000 bodies of the shortest form.
+MAX_BODIES = 100_000
 
 
 # -- sections -------------------------------------------------------------------------------
@@ -71,7 +82,15 @@ def _read_header(ctx: Ctx, raw: Any, default_name: str) -> _Header:
     table = read.table(ctx, "scenario", raw, ("name", "duration", "driver_hz", "player", "seed"))
     name = read.string(ctx, "scenario.name", table["name"]) if "name" in table else default_name
     duration = read.ranged(ctx, "scenario.duration", table.get("duration", 10.0), 0.0, 1e6, open_low=True)
-    driver_hz = read.ranged(ctx, "scenario.driver_hz", table.get("driver_hz", 60.0), 0.0, 1e4, open_low=True)
+    driver_hz = read.ranged(
+        ctx, "scenario.driver_hz", table.get("driver_hz", 60.0), MIN_DRIVER_HZ, MAX_DRIVER_HZ
+    )
+    if duration * driver_hz > MAX_DRIVER_TICKS:
+        raise ctx.fail(
+            "scenario.duration",
+            f"{duration:g} s at {driver_hz:g} Hz is {duration * driver_hz:.3g} driver ticks, "
+            f"more than the {MAX_DRIVER_TICKS:,} a run may take (MAX_DRIVER_TICKS)",
+        )
     player = read.string(ctx, "scenario.player", table["player"]) if "player" in table else None
     seed = table.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
@@ -96,9 +115,24 @@ SETUP_KEYS = (
 BUILTIN_SETUP_TABLES = {"human": "humanoid"}
 
 
-def _motion_table(
-    ctx: Ctx, key: str, value: Any, tables: dict[str, MotionTable], data: RetailData
-) -> MotionTable | None:
+class Tables(dict[str, MotionTable]):
+    """A scenario's ``[motion_table.NAME]`` tables, and the built-in tables it uses: each built-in
+    one is made once per scenario (:meth:`builtin`), so that every body naming it shares it, as
+    retail objects share the cached ``CMotionTable`` (each keeps its own state in its
+    ``MotionTableManager``), while two scenarios never share one."""
+
+    def __init__(self, own: dict[str, MotionTable]) -> None:
+        super().__init__(own)
+        self._builtins: dict[str, MotionTable] = {}
+
+    def builtin(self, name: str) -> MotionTable:
+        """The built-in table ``name`` (``"humanoid"``), made on first use."""
+        if name not in self._builtins:
+            self._builtins[name] = builtin_motion_table(name)
+        return self._builtins[name]
+
+
+def _motion_table(ctx: Ctx, key: str, value: Any, tables: Tables, data: RetailData) -> MotionTable | None:
     """A motion table by name: one of the scenario's, a built-in one, a portal DAT table id
     (``"0x09000001"``), or ``"none"``."""
     name = read.string(ctx, key, value)
@@ -107,7 +141,7 @@ def _motion_table(
     if name in tables:
         return tables[name]
     if name in builtin_motion_tables():
-        return builtin_motion_table(name)
+        return tables.builtin(name)
     dat_id = setup_id(name)
     if dat_id is not None:
         return data.motion_table(key, dat_id)
@@ -116,7 +150,7 @@ def _motion_table(
     raise ctx.missing("motion_table", key, f"no motion table named {name!r} (known: {known})")
 
 
-def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: RetailData) -> dict[str, Setup]:
+def _read_setups(ctx: Ctx, raw: Any, tables: Tables, data: RetailData) -> dict[str, Setup]:
     """Every ``[setup.NAME]``; a setup with a problem is reported and left out."""
     if not isinstance(raw, dict):
         raise ctx.fail("setup", f"expected tables [setup.NAME], got {read.kind(raw)}")
@@ -127,9 +161,7 @@ def _read_setups(ctx: Ctx, raw: Any, tables: dict[str, MotionTable], data: Retai
     return setups
 
 
-def _read_setup(
-    ctx: Ctx, key: str, name: str, value: Any, tables: dict[str, MotionTable], data: RetailData
-) -> Setup:
+def _read_setup(ctx: Ctx, key: str, name: str, value: Any, tables: Tables, data: RetailData) -> Setup:
     """One ``[setup.NAME]``."""
     table = read.table(ctx, key, value, SETUP_KEYS)
     spheres = []
@@ -191,7 +223,7 @@ def _read_setup(
     )
 
 
-def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
+def _builtin_setup(key: str, name: str, data: RetailData, tables: Tables) -> Setup:
     """A built-in setup; with a portal DAT the human is retail's setup 0x02000001, with the
     motion table its record names when the portal holds that table (else ``humanoid``)."""
     table = None
@@ -201,7 +233,7 @@ def _builtin_setup(key: str, name: str, data: RetailData) -> Setup:
     else:
         setup = BUILTIN_SETUPS[name]()
     if table is None and name in BUILTIN_SETUP_TABLES:
-        table = builtin_motion_table(BUILTIN_SETUP_TABLES[name])
+        table = tables.builtin(BUILTIN_SETUP_TABLES[name])
     if table is not None:
         setup.motion_table = table
     return setup
@@ -234,7 +266,7 @@ def _skill(ctx: Ctx, key: str, value: Any) -> int:
     return value
 
 
-def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData) -> SetupLookup:
+def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData, tables: Tables) -> SetupLookup:
     """Finds a setup by name: the scenario's ``[setup.NAME]`` first, then the built-in ones,
     then a portal DAT setup id (``"0x02000001"``)."""
 
@@ -243,7 +275,7 @@ def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData) -> Setup
         if name in setups:
             return setups[name]
         if name in BUILTIN_SETUPS:
-            return _builtin_setup(key, name, data)
+            return _builtin_setup(key, name, data, tables)
         dat_id = setup_id(name)
         if dat_id is not None:
             if dat_id >> 24 != SETUP_ID_TYPE:
@@ -403,10 +435,13 @@ def parse_scenario(
     ``folder`` is where relative ``[data]`` paths resolve (the scenario file's folder; the
     current directory when None).
     """
+    read.check_toml_limits(source, text)
     try:
         document = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise ScenarioError(f"{source}: not valid TOML: {error}") from None
+    except RecursionError:  # check_toml_limits keeps nesting well inside the limit; a last guard
+        raise ScenarioError(one_line(f"{source}: not valid TOML: nested too deeply to read")) from None
+    except ValueError as error:  # TOMLDecodeError, or a number Python will not convert
+        raise ScenarioError(one_line(f"{source}: not valid TOML: {error}")) from None
     return build_scenario(document, source, default_name, folder, read.TomlLines(text))
 
 
@@ -421,7 +456,9 @@ def _read_bodies(
     """Every ``[[body]]`` (at least one); a body with a problem is reported and left out."""
     bodies: list[PhysicsObj] = []
     with ctx.part("body"):
-        raw_bodies = read.list_of_tables(ctx, "body", raw)
+        raw_bodies = read.at_most(
+            ctx, "body", read.list_of_tables(ctx, "body", raw), MAX_BODIES, "bodies", "MAX_BODIES"
+        )
         if not raw_bodies:
             raise ctx.fail("body", "missing: a scenario needs at least one [[body]]")
         object_names = {body.name for body in objects}
@@ -462,9 +499,9 @@ def build_scenario(
     header = _Header(default_name, math.inf, 60.0, None, 0)  # what a broken header leaves to check
     with ctx.part():
         header = _read_header(ctx, document.get("scenario", {}), default_name)
-    tables: dict[str, MotionTable] = {}
+    tables = Tables({})
     with ctx.part("motion_table"):
-        tables = read_motion_tables(ctx, document.get("motion_table", {}))
+        tables = Tables(read_motion_tables(ctx, document.get("motion_table", {})))
     scripts: dict[str, int] = {}
     with ctx.part("script"):
         scripts = read_scripts(ctx, document.get("script", {}))
@@ -478,7 +515,7 @@ def build_scenario(
             read_landblocks(ctx, document.get("landblock", []), world, data)
         with ctx.part():
             read_buildings(ctx, document.get("building", []), world)
-        find_setup = _shared(_setup_lookup(ctx, setups, data))
+        find_setup = _shared(_setup_lookup(ctx, setups, data, tables))
         find_table = _shared(lambda key, value: _motion_table(ctx, key, value, tables, data))
         objects: list[PhysicsObj] = []
         with ctx.part():
@@ -522,22 +559,37 @@ def builtin_scenario_text(name: str) -> str:
 def load_scenario(path: str | Path | None = None) -> Simulation:
     """Load a scenario file, or the embedded default scenario when ``path`` is None.
 
-    A name without a path that matches a built-in scenario (``"default"``) loads that one.
+    A name without a path that matches a built-in scenario (``"default"``) loads that one. The
+    file must be a regular file of at most ``MAX_SCENARIO_BYTES`` of UTF-8 text.
     """
     if path is None or (isinstance(path, str) and path in builtin_scenarios()):
         name = DEFAULT_SCENARIO if path is None else str(path)
         return parse_scenario(builtin_scenario_text(name), source=f"<built-in {name}>", default_name=name)
     file = Path(path)
+    source = one_line(str(file))
+    bare_name = isinstance(path, str) and file.suffix == "" and len(file.parts) == 1  # a built-in's?
     try:
-        text = file.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        if isinstance(path, str) and file.suffix == "" and len(file.parts) == 1:
+        data = read_limited(file, MAX_SCENARIO_BYTES, "the scenario size limit")
+    except InputError as error:
+        if error.errno == errno.ENOENT and bare_name:
             known = ", ".join(builtin_scenarios())
-            raise ScenarioError(f"{file}: no such file nor built-in scenario (built-in: {known})") from None
-        raise ScenarioError(f"{file}: no such file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise ScenarioError(f"{file}: cannot read: {error}") from None
-    return parse_scenario(text, source=str(file), default_name=file.stem, folder=file.parent)
+            raise ScenarioError(f"{source}: no such file nor built-in scenario (built-in: {known})") from None
+        if error.errno == errno.ENOENT:
+            raise ScenarioError(f"{source}: no such file") from None
+        raise ScenarioError(f"{source}: cannot read: {error.strerror}") from None
+    return parse_scenario(_utf8(source, data), source=source, default_name=file.stem, folder=file.parent)
+
+
+def _utf8(source: str, data: bytes) -> str:
+    """A scenario file's bytes as text; bytes that are not UTF-8 are refused by their offset."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        raise ScenarioError(
+            f"{source}: line {line}: not UTF-8 text: byte {data[error.start]:#04x} at offset {error.start:,} "
+            "(a scenario is UTF-8 TOML)"
+        ) from None
 
 
 def builtin_scenarios() -> list[str]:

@@ -51,6 +51,15 @@ _DIRECTIONS = {
 }
 
 
+#: The most frames one animation may have, and all the animations of a scenario's motion tables
+#: together: a frame costs some 500 bytes built (its part and position frames), so 200,000 are
+#: about 100 MB. Retail's humanoid table has 232 frames in all, 30 in its longest animation.
+MAX_ANIMATION_FRAMES = 100_000
+MAX_SCENARIO_FRAMES = 200_000
+#: The sections of a motion table that hold animations.
+ANIMATION_SECTIONS = ("cycle", "link", "modifier")
+
+
 def _count(ctx: Ctx, key: str, value: Any, low: int, high: int) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
         raise ctx.fail(key, f"expected a whole number in [{low}, {high}], got {read.kind(value)}")
@@ -117,7 +126,7 @@ def _motion_data(ctx: Ctx, key: str, entry: dict[str, Any], bitfield: int) -> Mo
         if required not in entry:
             raise ctx.fail(f"{key}.{required}", "missing (an animation needs framerate and frames)")
     framerate = read.float32(ctx, f"{key}.framerate", entry["framerate"], -1000.0, 1000.0)
-    num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, 100000)
+    num_frames = _count(ctx, f"{key}.frames", entry["frames"], 1, MAX_ANIMATION_FRAMES)
     low_frame = _count(ctx, f"{key}.low_frame", entry.get("low_frame", 0), 0, num_frames - 1)
     high_frame = _count(ctx, f"{key}.high_frame", entry.get("high_frame", -1), -1, num_frames - 1)
 
@@ -221,6 +230,13 @@ def read_motion_tables(ctx: Ctx, raw: Any) -> dict[str, MotionTable]:
     """Every ``[motion_table.NAME]`` of a scenario."""
     if not isinstance(raw, dict):
         raise ctx.fail("motion_table", f"expected tables [motion_table.NAME], got {read.kind(raw)}")
+    frames = _frames_declared(raw)
+    if frames > MAX_SCENARIO_FRAMES:
+        raise ctx.fail(
+            "motion_table",
+            f"the animations declare {frames:,} frames in all: more than the {MAX_SCENARIO_FRAMES:,} "
+            "allowed (MAX_SCENARIO_FRAMES)",
+        )
     tables: dict[str, MotionTable] = {}
     for name, value in raw.items():
         with ctx.part(f"motion_table.{name}"):
@@ -257,3 +273,17 @@ def builtin_motion_table(name: str) -> MotionTable:
     except tomllib.TOMLDecodeError as error:
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
     return read_motion_table(Ctx(source), "motion_table", document.get("motion_table"))
+
+
+def _frames_declared(tables: dict[str, Any]) -> int:
+    """The frames all the animations of ``[motion_table.*]`` declare, counted before any is built
+    (a ``frames`` that is not a whole number counts nothing: its reader reports it)."""
+    total = 0
+    for table in tables.values():
+        for section in ANIMATION_SECTIONS:
+            entries = table.get(section) if isinstance(table, dict) else None
+            for entry in entries if isinstance(entries, list) else ():
+                frames = entry.get("frames") if isinstance(entry, dict) else None
+                if isinstance(frames, int) and not isinstance(frames, bool) and frames > 0:
+                    total += frames
+    return total

@@ -360,6 +360,14 @@ def list_of_tables(ctx: Ctx, key: str, value: Any) -> list[Any]:
     return value
 
 
+def at_most(ctx: Ctx, key: str, items: list[Any], most: int, what: str, limit: str) -> list[Any]:
+    """``items``, unless there are more than ``most`` of them (a bound on what building costs);
+    ``what`` names them ("bodies") and ``limit`` the limit ("MAX_BODIES") in the message."""
+    if len(items) > most:
+        raise ctx.fail(key, f"{len(items):,} {what}: more than the {most:,} allowed ({limit})")
+    return items
+
+
 #: The most characters of a string a message quotes (a value may be megabytes long).
 QUOTED_CHARS = 60
 

@@ -40,6 +40,19 @@ WATER_TERRAIN_TYPE = 16
 #: The word ``water = "all"`` gives every vertex (terrain type in bits 2..6).
 WATER_WORD = WATER_TERRAIN_TYPE << 2
 
+#: The most ``[[landblock]]`` a scenario may list: each is some 7 ms and 150 KB to build (its
+#: terrain and 64 land cells), and 256 (a 3-km square) are 2 s; the world has 65,000.
+MAX_LANDBLOCKS = 256
+#: The most ``[[object]]`` a scenario may list (twice the 10,000 bodies acphys measures; some
+#: 0.4 ms each to place).
+MAX_OBJECTS = 20_000
+#: The most ``[[building]]`` a scenario may list (some 3 ms each), and the most rooms and doorways
+#: one building may have: rooms are tested against each other for overlap, so their cost grows
+#: with the square of their number.
+MAX_BUILDINGS = 1_000
+MAX_ROOMS = 256
+MAX_DOORWAYS = 256
+
 #: Finds a setup by name for the key naming it (built-in or ``[setup.NAME]``).
 SetupLookup = Callable[[str, Any], Setup]
 
@@ -104,7 +117,9 @@ def read_landblocks(ctx: Ctx, raw: Any, world: World, data: RetailData) -> None:
     as terrain words. A landblock with a problem is reported and left out."""
     seen: set[int] = set()
     from_dat: list[tuple[str, int, LandBlock]] = []
-    for index, item in enumerate(read.list_of_tables(ctx, "landblock", raw)):
+    entries = read.list_of_tables(ctx, "landblock", raw)
+    read.at_most(ctx, "landblock", entries, MAX_LANDBLOCKS, "landblocks", "MAX_LANDBLOCKS")
+    for index, item in enumerate(entries):
         with ctx.part():
             _read_landblock(ctx, f"landblock[{index}]", item, world, data, seen, from_dat)
     for key, landblock, block in from_dat:
@@ -275,9 +290,14 @@ def read_objects(ctx: Ctx, raw: Any, world: World, find_setup: SetupLookup) -> l
     """Place each ``[[object]]`` in ``world`` (in the room holding its origin, if any); an object
     with a problem is reported and left out."""
     objects: list[PhysicsObj] = []
-    for index, item in enumerate(read.list_of_tables(ctx, "object", raw)):
+    names: set[str] = set()
+    entries = read.list_of_tables(ctx, "object", raw)
+    read.at_most(ctx, "object", entries, MAX_OBJECTS, "objects", "MAX_OBJECTS")
+    for index, item in enumerate(entries):
         with ctx.part():
-            objects.append(_read_object(ctx, f"object[{index}]", index, item, world, find_setup, objects))
+            placed = _read_object(ctx, f"object[{index}]", index, item, world, find_setup, names)
+            names.add(placed.name)
+            objects.append(placed)
     return objects
 
 
@@ -288,16 +308,16 @@ def _read_object(
     item: Any,
     world: World,
     find_setup: SetupLookup,
-    objects: list[PhysicsObj],
+    names: set[str],
 ) -> PhysicsObj:
-    """One ``[[object]]``, placed in ``world`` (``objects``: those placed before it)."""
+    """One ``[[object]]``, placed in ``world`` (``names``: those of the objects placed before it)."""
     entry = read.table(ctx, key, item, OBJECT_KEYS)
     for required in ("setup", "landblock", "origin"):
         if required not in entry:
             raise ctx.fail(f"{key}.{required}", "missing (every object needs setup, landblock and origin)")
     setup = find_setup(f"{key}.setup", entry["setup"])
     name = read.string(ctx, f"{key}.name", entry["name"]) if "name" in entry else f"{setup.name}-{index}"
-    if any(other.name == name for other in objects):
+    if name in names:
         raise ctx.fail(f"{key}.name", f"two objects are named {name!r}")
     landblock = read.landblock(ctx, f"{key}.landblock", entry["landblock"])
     origin = _landblock_point(ctx, f"{key}.origin", entry["origin"])
@@ -358,7 +378,8 @@ def _read_rooms(
     ctx: Ctx, key: str, value: Any, origin: Vector3, heading: int
 ) -> dict[str, tuple[Vector3, Vector3]]:
     rooms: dict[str, tuple[Vector3, Vector3]] = {}
-    for index, item in enumerate(read.list_of_tables(ctx, key, value)):
+    entries = read.at_most(ctx, key, read.list_of_tables(ctx, key, value), MAX_ROOMS, "rooms", "MAX_ROOMS")
+    for index, item in enumerate(entries):
         room_key = f"{key}[{index}]"
         entry = read.table(ctx, room_key, item, ("name", "min", "max"))
         for required in ("name", "min", "max"):
@@ -394,7 +415,8 @@ def _read_doorways(
     ctx: Ctx, key: str, value: Any, rooms: dict[str, tuple[Vector3, Vector3]], origin: Vector3, heading: int
 ) -> list[DoorwaySpec]:
     doorways = []
-    for index, item in enumerate(read.list_of_tables(ctx, key, value)):
+    entries = read.list_of_tables(ctx, key, value)
+    for index, item in enumerate(read.at_most(ctx, key, entries, MAX_DOORWAYS, "doorways", "MAX_DOORWAYS")):
         door_key = f"{key}[{index}]"
         entry = read.table(ctx, door_key, item, ("between", "min", "max"))
         for required in ("between", "min", "max"):
@@ -439,7 +461,9 @@ def read_buildings(ctx: Ctx, raw: Any, world: World) -> None:
     """Build each ``[[building]]`` with ``build_house``: its rooms become env cells of the world
     (ids 0x0100 up in their landblock, in order), the building stands in the land cell holding
     its origin. A building with a problem is reported and left out."""
-    for index, item in enumerate(read.list_of_tables(ctx, "building", raw)):
+    entries = read.list_of_tables(ctx, "building", raw)
+    read.at_most(ctx, "building", entries, MAX_BUILDINGS, "buildings", "MAX_BUILDINGS")
+    for index, item in enumerate(entries):
         with ctx.part():
             _read_building(ctx, f"building[{index}]", item, world)
 

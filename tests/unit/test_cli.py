@@ -313,3 +313,15 @@ def test_the_installed_console_script(tmp_path: Path) -> None:
     assert done.stderr.splitlines() == [
         f"acphys: error: {BAD / 'no_body.toml'}: body: missing: a scenario needs at least one [[body]]"
     ]
+
+
+def test_the_run_summary_lists_the_first_bodies_and_says_so(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A summary of 10,000 rows took rich longer than the run: past ``TABLE_ROWS`` it stops."""
+    monkeypatch.setattr("acphys.cli.TABLE_ROWS", 3)
+    code, out, err = invoke(["run", "--until", "0.1"], capsys)  # the default's 7 bodies
+    assert (code, err) == (0, "")
+    assert "7 bodies" in out and "the first 3 bodies; --trace records them all" in out
+    rows = [line for line in out.splitlines() if re.match(r"│ \S.* │ 0x[0-9A-F]{8} │", line)]
+    assert len(rows) == 3

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from acphys.flags import TransitionState
+from acphys.flags import TransitionState, member_namespace
 from acphys.geometry.cylsphere import CylSphere
 from acphys.geometry.sphere import Sphere
 from acphys.math.frame import Frame
@@ -16,6 +16,9 @@ from acphys.motion.table_manager import MotionTableManager
 from acphys.physics_part import PhysicsPart
 from acphys.precision import f32, pack3, unpack3
 from acphys.setup import Setup
+
+ME = member_namespace(MovementError)
+MT = member_namespace(MovementType)
 
 if TYPE_CHECKING:
     from acphys.geometry.sphere import SphereTransition
@@ -134,7 +137,7 @@ class PartArray:
 
     def _perform(self, ms: MovementStruct) -> int:
         if self.motion_table_manager is None:
-            return MovementError.NO_ANIMATION_TABLE
+            return ME.NO_ANIMATION_TABLE
         return self.motion_table_manager.perform_movement(ms, self.sequence)
 
     def do_interpreted_motion(self, motion: int, params: MovementParameters) -> int:
@@ -142,15 +145,15 @@ class PartArray:
 
         Retail: CPartArray::DoInterpretedMotion @ 0x00518750 (acclient.c:326017)
         """
-        return self._perform(MovementStruct(MovementType.INTERPRETED_COMMAND, motion, params=params))
+        return self._perform(MovementStruct(MT.INTERPRETED_COMMAND, motion, params=params))
 
     def stop_interpreted_motion(self, motion: int, params: MovementParameters) -> int:
         """Retail: CPartArray::StopInterpretedMotion @ 0x005187F0 (acclient.c:326053)"""
-        return self._perform(MovementStruct(MovementType.STOP_INTERPRETED_COMMAND, motion, params=params))
+        return self._perform(MovementStruct(MT.STOP_INTERPRETED_COMMAND, motion, params=params))
 
     def stop_completely_internal(self) -> int:
         """Retail: CPartArray::StopCompletelyInternal @ 0x00518890 (acclient.c:326089)"""
-        return self._perform(MovementStruct(MovementType.STOP_COMPLETELY))
+        return self._perform(MovementStruct(MT.STOP_COMPLETELY))
 
     def animation_done(self, success: bool) -> None:
         """Retail: CPartArray::AnimationDone @ 0x00517D30 (acclient.c:325079)"""

@@ -66,6 +66,11 @@ class SetPositionFlags(enum.IntFlag):
     SEND_POSITION_EVENT = 0x1000
 
 
+#: ``enter_world``'s PLACEMENT | SLIDE, combined once. The bits of a ``SetPositionStruct`` are
+#: tested on plain ints (``int(flags) & int(FLAG)``): ``IntFlag``'s ``&`` builds a flag member.
+_ENTER_WORLD_FLAGS = SetPositionFlags.PLACEMENT | SetPositionFlags.SLIDE
+
+
 class PhysicsTimeStamp(enum.IntEnum):
     """``PhysicsTimeStamp`` (acclient.h:6084): the slots of ``update_times``."""
 
@@ -239,7 +244,7 @@ class CellMembership:
         if self.parent is not None:
             return False
         self.update_time = self.world.cur_time
-        sps = SetPositionStruct(self.position.copy(), SetPositionFlags.PLACEMENT | SetPositionFlags.SLIDE)
+        sps = SetPositionStruct(self.position.copy(), _ENTER_WORLD_FLAGS)
         if self.set_position(sps) != SetPositionError.OK:
             return False
         self.set_active(True)
@@ -328,10 +333,10 @@ class CellMembership:
 
         Retail: CPhysicsObj::SetPositionInternal @ 0x00516040 (acclient.c:323257)
         """
-        if sps.flags & SetPositionFlags.RANDOM_SCATTER:
+        if int(sps.flags) & int(SetPositionFlags.RANDOM_SCATTER):
             return self.set_scatter_position_internal(sps, transit)
         result = self.set_position_with_struct(sps.pos.copy(), sps, transit)
-        if result != SetPositionError.OK and sps.flags & SetPositionFlags.SCATTER:
+        if result != SetPositionError.OK and int(sps.flags) & int(SetPositionFlags.SCATTER):
             result = self.set_scatter_position_internal(sps, transit)
         return result
 
@@ -377,7 +382,7 @@ class CellMembership:
             self.world.goto_lost_cell(self)
             self.transient_state &= ~TS.ACTIVE
             return SetPositionError.OK
-        if sps.flags & SetPositionFlags.DONT_CREATE_CELLS:
+        if int(sps.flags) & int(SetPositionFlags.DONT_CREATE_CELLS):
             transit.cell_array.do_not_load_cells = True
         if not self.check_position_internal(new_cell, p, transit, sps):
             reported = self.handle_all_collisions(transit.collision_info, False, False)
@@ -397,7 +402,7 @@ class CellMembership:
         Retail: CPhysicsObj::CheckPositionInternal @ 0x00511E90 (acclient.c:319172)
         """
         transit.init_path(new_cell, None, new_pos)
-        slide = bool(sps.flags & SetPositionFlags.SLIDE)
+        slide = int(sps.flags) & int(SetPositionFlags.SLIDE) != 0
         if not slide:
             transit.sphere_path.placement_allows_sliding = False
         if not transit.find_valid_position():

@@ -142,16 +142,25 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
 
     Retail: LandDefs::adjust_to_outside @ 0x005A9BC0 (acclient.c:467433)
     """
+    lcoord = adjust_to_outside_lcoord(cell_id, loc)
+    return lcoord_to_gid(*lcoord) if lcoord is not None else 0
+
+
+def adjust_to_outside_lcoord(cell_id: int, loc: Vector3) -> tuple[int, int] | None:
+    """:func:`adjust_to_outside`, giving the lcoord of the new cell (what ``gid_to_lcoord`` of
+    the returned cell id gives), or None off the world; ``loc`` is rewritten the same way."""
     if not _valid_cell_index(cell_id):
-        return 0
+        return None
     if abs(loc.x) < EPSILON:
         loc.x = 0.0
     if abs(loc.y) < EPSILON:
         loc.y = 0.0
-    lcoord = get_outside_lcoord(cell_id, loc)
-    if lcoord is None:
-        return 0
     x, y = loc.x, loc.y
+    # get_outside_lcoord, inlined: its cell index check has just passed
+    lx = ((cell_id >> 21) & 0x7F8) + math.floor(x / CELL_LENGTH)
+    ly = 8 * ((cell_id >> 16) & 0xFF) + math.floor(y / CELL_LENGTH)
+    if not (0 <= lx < MAX_LCOORD and 0 <= ly < MAX_LCOORD):
+        return None
     loc.x, loc.y, _ = unpack3(
         pack3(
             x - math.floor(x / BLOCK_LENGTH) * BLOCK_LENGTH,
@@ -159,7 +168,7 @@ def adjust_to_outside(cell_id: int, loc: Vector3) -> int:
             0.0,
         )
     )
-    return lcoord_to_gid(*lcoord)
+    return lx, ly
 
 
 def get_block_offset(cell_from: int, cell_to: int) -> Vector3:

@@ -44,6 +44,7 @@ from acphys.motion.commands import (
 )
 from acphys.motion.motion_states import InterpretedMotionState, MotionNode, RawMotionState
 from acphys.motion.movement import (
+    DEFAULT_MOVEMENT_FLAGS,
     HoldKey,
     MovementError,
     MovementFlags,
@@ -59,7 +60,10 @@ if TYPE_CHECKING:
 
 PS = member_namespace(PhysicsState)
 TS = member_namespace(TransientState)
-MF = MovementFlags
+MF = member_namespace(MovementFlags)
+ME = member_namespace(MovementError)
+MT = member_namespace(MovementType)
+HK = member_namespace(HoldKey)
 
 #: Locomotion speeds of the standard human cycles at speed 1 (m/s); float32 as the binary holds them.
 WALK_ANIM_SPEED = f32(3.1199999)
@@ -82,6 +86,9 @@ DEFAULT_JUMP_V_Z = 10.0
 _REPLAY_CLEARED = (
     MF.SET_HOLD_KEY | MF.MODIFY_INTERPRETED_STATE | MF.CANCEL_MOVETO | MF.DISABLE_JUMP_DURING_LINK
 )
+#: What that clearing gives on a new ``MovementParameters`` (the constructor's bits), computed
+#: once: ``IntFlag``'s ``&`` and ``~`` build flag members, which costs more than the replay's test.
+_REPLAY_FLAGS = DEFAULT_MOVEMENT_FLAGS & ~_REPLAY_CLEARED
 #: ``DoMotion``: the chat-emote bit of a motion id, refused outside NonCombat.
 _CHAT_EMOTE_BIT = 0x02000000
 
@@ -112,7 +119,7 @@ def motion_allows_jump(substate: int) -> int:
         or 0x1000006F <= substate <= 0x10000078
         or 0x10000128 <= substate <= 0x10000131
     )
-    return MovementError.CANT_JUMP_FROM_THIS_POSITION if refused else MovementError.NONE
+    return ME.CANT_JUMP_FROM_THIS_POSITION if refused else ME.NONE
 
 
 class MotionInterp:
@@ -217,7 +224,7 @@ class MotionInterp:
             speed = f32(speed)
         return motion, speed
 
-    def adjust_motion(self, motion: int, speed: float, key: HoldKey = HoldKey.INVALID) -> tuple[int, float]:
+    def adjust_motion(self, motion: int, speed: float, key: HoldKey = HK.INVALID) -> tuple[int, float]:
         """Canonicalize a motion: left/backwards become right/forward with a negative speed.
 
         ``TurnLeft`` → ``TurnRight`` x -1; ``WalkBackwards`` → ``WalkForward``
@@ -239,9 +246,9 @@ class MotionInterp:
             if motion == SIDE_STEP_LEFT:
                 motion, speed = SIDE_STEP_RIGHT, f32(-speed)
             speed = f32(SIDESTEP_FACTOR * speed)
-        if key == HoldKey.INVALID:
+        if key == HK.INVALID:
             key = self.raw_state.current_holdkey
-        if key == HoldKey.RUN:
+        if key == HK.RUN:
             motion, speed = self.apply_run_to_command(motion, speed)
         return motion, speed
 
@@ -316,11 +323,11 @@ class MotionInterp:
         Retail: CMotionInterp::jump_charge_is_allowed @ 0x00527A50 (acclient.c:343317)
         """
         if self.weenie_obj is not None and not self.weenie_obj.can_jump(self.jump_extent):
-            return MovementError.CANT_JUMP_LOADED_DOWN
+            return ME.CANT_JUMP_LOADED_DOWN
         forward = self.interpreted_state.forward_command
         if forward == FALLEN or CROUCH <= forward <= SLEEPING:
-            return MovementError.CANT_JUMP_FROM_THIS_POSITION
-        return MovementError.NONE
+            return ME.CANT_JUMP_FROM_THIS_POSITION
+        return ME.NONE
 
     def charge_jump(self) -> int:
         """Start charging a jump; a body dead still on walkable ground charges a standing long jump.
@@ -332,7 +339,7 @@ class MotionInterp:
             return error
         if self.is_standing_still():
             self.standing_longjump = True
-        return MovementError.NONE
+        return ME.NONE
 
     def jump_is_allowed(self, extent: float) -> tuple[int, int]:
         """``(error, stamina_cost)`` for a jump of ``extent``; the cost is 0 unless the weenie priced it.
@@ -345,9 +352,9 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None or not (self._is_non_creature() or not obj.state & PS.GRAVITY or on_ground(obj)):
-            return MovementError.CANT_JUMP_WHILE_IN_THE_AIR, 0
+            return ME.CANT_JUMP_WHILE_IN_THE_AIR, 0
         if obj.is_fully_constrained():
-            return MovementError.GENERAL_MOVEMENT_FAILURE, 0
+            return ME.GENERAL_MOVEMENT_FAILURE, 0
         if self.pending_motions and self.pending_motions[0].jump_error_code:
             return self.pending_motions[0].jump_error_code, 0
         error = self.jump_charge_is_allowed()
@@ -358,8 +365,8 @@ class MotionInterp:
             return error, 0
         cost = self.weenie_obj.jump_stamina_cost(extent)
         if cost is None:
-            return MovementError.GENERAL_MOVEMENT_FAILURE, 0
-        return MovementError.NONE, cost
+            return ME.GENERAL_MOVEMENT_FAILURE, 0
+        return ME.NONE, cost
 
     def jump(self, extent: float) -> tuple[int, int]:
         """Jump with charge ``extent``: on success leave walkable ground (LeaveGround launches the body).
@@ -372,7 +379,7 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT, 0
+            return ME.NO_PHYSICS_OBJECT, 0
         extent = f32(extent)
         obj.cancel_moveto()
         error, cost = self.jump_is_allowed(extent)
@@ -511,26 +518,26 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT
+            return ME.NO_PHYSICS_OBJECT
         modify = params.has(MF.MODIFY_INTERPRETED_STATE)
         if not self.contact_allows_move(motion):
             if motion & ACTION_MASK:
-                result = MovementError.CANT_JUMP_WHILE_IN_THE_AIR
+                result = ME.CANT_JUMP_WHILE_IN_THE_AIR
             else:
                 if modify:
                     self.interpreted_state.apply_motion(motion, params)
-                result = MovementError.NONE
+                result = ME.NONE
         elif self.standing_longjump and motion in (WALK_FORWARD, RUN_FORWARD, SIDE_STEP_RIGHT):
             if modify:
                 self.interpreted_state.apply_motion(motion, params)
-            result = MovementError.NONE
+            result = ME.NONE
         else:
             if motion == DEAD:
                 obj.remove_link_animations()
             result = obj.do_interpreted_motion(motion, params)
             if not result:
                 if params.has(MF.DISABLE_JUMP_DURING_LINK):
-                    jump_error = MovementError.CANT_JUMP_FROM_THIS_POSITION
+                    jump_error = ME.CANT_JUMP_FROM_THIS_POSITION
                 else:
                     jump_error = motion_allows_jump(motion)
                     if not jump_error and not motion & ACTION_MASK:
@@ -551,17 +558,17 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT
+            return ME.NO_PHYSICS_OBJECT
         modify = params.has(MF.MODIFY_INTERPRETED_STATE)
         longjump_held = self.standing_longjump and motion in (WALK_FORWARD, RUN_FORWARD, SIDE_STEP_RIGHT)
         if not self.contact_allows_move(motion) or longjump_held:
             if modify:
                 self.interpreted_state.remove_motion(motion)
-            result = MovementError.NONE
+            result = ME.NONE
         else:
             result = obj.stop_interpreted_motion(motion, params)
             if not result:
-                self.add_to_queue(params.context_id, READY, MovementError.NONE)
+                self.add_to_queue(params.context_id, READY, ME.NONE)
                 if modify:
                     self.interpreted_state.remove_motion(motion)
         self._remove_links_if_no_cell()
@@ -580,7 +587,7 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT
+            return ME.NO_PHYSICS_OBJECT
         adjusted = params.copy()
         if params.has(MF.CANCEL_MOVETO):
             obj.cancel_moveto()
@@ -589,15 +596,15 @@ class MotionInterp:
         new_motion, adjusted.speed = self.adjust_motion(motion, adjusted.speed, params.hold_key_to_apply)
         if self.interpreted_state.current_style != NON_COMBAT:
             if motion == CROUCH:
-                return MovementError.CANT_CROUCH_IN_COMBAT
+                return ME.CANT_CROUCH_IN_COMBAT
             if motion == SITTING:
-                return MovementError.CANT_SIT_IN_COMBAT
+                return ME.CANT_SIT_IN_COMBAT
             if motion == SLEEPING:
-                return MovementError.CANT_LIE_DOWN_IN_COMBAT
+                return ME.CANT_LIE_DOWN_IN_COMBAT
             if motion & _CHAT_EMOTE_BIT:
-                return MovementError.CANT_CHAT_EMOTE_IN_COMBAT
+                return ME.CANT_CHAT_EMOTE_IN_COMBAT
         if motion & ACTION_MASK and self.interpreted_state.get_num_actions() >= MAX_ACTIONS:
-            return MovementError.TOO_MANY_ACTIONS
+            return ME.TOO_MANY_ACTIONS
         result = self.do_interpreted_motion(new_motion, adjusted)
         if not result and params.has(MF.MODIFY_RAW_STATE):
             self.raw_state.apply_motion(motion, params)
@@ -610,7 +617,7 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT
+            return ME.NO_PHYSICS_OBJECT
         if params.has(MF.CANCEL_MOVETO):
             obj.cancel_moveto()
         adjusted = params.copy()
@@ -629,7 +636,7 @@ class MotionInterp:
         """
         obj = self.physics_obj
         if obj is None:
-            return MovementError.NO_PHYSICS_OBJECT
+            return ME.NO_PHYSICS_OBJECT
         obj.cancel_moveto()
         jump_error = motion_allows_jump(self.interpreted_state.forward_command)
         for state in (self.raw_state, self.interpreted_state):
@@ -640,26 +647,26 @@ class MotionInterp:
         obj.stop_completely_internal()
         self.add_to_queue(0, READY, jump_error)
         self._remove_links_if_no_cell()
-        return MovementError.NONE
+        return ME.NONE
 
     def perform_movement(self, ms: MovementStruct) -> int:
         """Dispatch movement types 1-5, then let the part array report completed motions (else 0x47).
 
         Retail: CMotionInterp::PerformMovement @ 0x00528E80 (acclient.c:344669)
         """
-        if ms.type == MovementType.RAW_COMMAND:
+        if ms.type == MT.RAW_COMMAND:
             result = self.do_motion(ms.motion, ms.params)
-        elif ms.type == MovementType.INTERPRETED_COMMAND:
+        elif ms.type == MT.INTERPRETED_COMMAND:
             result = self.do_interpreted_motion(ms.motion, ms.params)
-        elif ms.type == MovementType.STOP_RAW_COMMAND:
+        elif ms.type == MT.STOP_RAW_COMMAND:
             result = self.stop_motion(ms.motion, ms.params)
-        elif ms.type == MovementType.STOP_INTERPRETED_COMMAND:
+        elif ms.type == MT.STOP_INTERPRETED_COMMAND:
             result = self.stop_interpreted_motion(ms.motion, ms.params)
-        elif ms.type == MovementType.STOP_COMPLETELY:
+        elif ms.type == MT.STOP_COMPLETELY:
             self.stop_completely()
-            result = MovementError.NONE
+            result = ME.NONE
         else:
-            return MovementError.GENERAL_MOVEMENT_FAILURE
+            return ME.GENERAL_MOVEMENT_FAILURE
         self.physics_obj.check_for_completed_motions()
         return result
 
@@ -679,7 +686,7 @@ class MotionInterp:
         if obj is None:
             return
         params = MovementParameters()
-        params.flags &= ~_REPLAY_CLEARED
+        params.flags = _REPLAY_FLAGS  # params.flags &= ~_REPLAY_CLEARED, on the constructor's bits
         if cancel_moveto:
             params.flags |= MF.CANCEL_MOVETO
         if disallow_jump:
@@ -708,7 +715,7 @@ class MotionInterp:
             self.do_interpreted_motion(state.turn_command, params)
         else:
             if not obj.stop_interpreted_motion(TURN_RIGHT, params):
-                self.add_to_queue(params.context_id, READY, MovementError.NONE)
+                self.add_to_queue(params.context_id, READY, ME.NONE)
             self._remove_links_if_no_cell()
 
     def apply_raw_movement(self, cancel_moveto: bool, disallow_jump: bool) -> None:
@@ -758,8 +765,8 @@ class MotionInterp:
 
         Retail: CMotionInterp::set_hold_run @ 0x00528B70 (acclient.c:344491)
         """
-        if bool(val) != (self.raw_state.current_holdkey == HoldKey.RUN):
-            self.raw_state.current_holdkey = HoldKey.RUN if val else HoldKey.NONE
+        if bool(val) != (self.raw_state.current_holdkey == HK.RUN):
+            self.raw_state.current_holdkey = HK.RUN if val else HK.NONE
             self.apply_current_movement(cancel_moveto, False)
 
     def set_hold_key(self, key: HoldKey, cancel_moveto: bool) -> None:
@@ -770,7 +777,7 @@ class MotionInterp:
         current = self.raw_state.current_holdkey
         if key == current:
             return
-        if (key == HoldKey.NONE and current == HoldKey.RUN) or key == HoldKey.RUN:
+        if (key == HK.NONE and current == HK.RUN) or key == HK.RUN:
             self.raw_state.current_holdkey = key
             self.apply_current_movement(cancel_moveto, False)
 
@@ -818,6 +825,6 @@ class MotionInterp:
         self.raw_state = RawMotionState()
         self.interpreted_state = InterpretedMotionState()
         self.physics_obj.initialize_motion_tables()
-        self.add_to_queue(0, READY, MovementError.NONE)
+        self.add_to_queue(0, READY, ME.NONE)
         self.initted = True
         self.leave_ground()

@@ -142,8 +142,9 @@ class MovementParameters:
         )
 
     def has(self, flag: MovementFlags) -> bool:
-        """Whether ``flag`` is set in the bitfield."""
-        return bool(self.flags & flag)
+        """Whether ``flag`` is set in the bitfield (tested on the plain ints: ``IntFlag``'s ``&``
+        builds a new flag member, which costs more than the test)."""
+        return int(self.flags) & int(flag) != 0
 
     def copy(self) -> MovementParameters:
         return MovementParameters(

@@ -13,28 +13,32 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.flags import member_namespace
 from acphys.motion.interp import InterpretedMotionState, MotionInterp, RawMotionState
 from acphys.motion.move_to import MoveToManager, TargetInfo
 from acphys.motion.movement import MovementError, MovementStruct, MovementType
+
+ME = member_namespace(MovementError)
+MT = member_namespace(MovementType)
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
 
 _MOTION_TYPES = frozenset(
     (
-        MovementType.RAW_COMMAND,
-        MovementType.INTERPRETED_COMMAND,
-        MovementType.STOP_RAW_COMMAND,
-        MovementType.STOP_INTERPRETED_COMMAND,
-        MovementType.STOP_COMPLETELY,
+        MT.RAW_COMMAND,
+        MT.INTERPRETED_COMMAND,
+        MT.STOP_RAW_COMMAND,
+        MT.STOP_INTERPRETED_COMMAND,
+        MT.STOP_COMPLETELY,
     )
 )
 _MOVE_TO_TYPES = frozenset(
     (
-        MovementType.MOVE_TO_OBJECT,
-        MovementType.MOVE_TO_POSITION,
-        MovementType.TURN_TO_OBJECT,
-        MovementType.TURN_TO_HEADING,
+        MT.MOVE_TO_OBJECT,
+        MT.MOVE_TO_POSITION,
+        MT.TURN_TO_OBJECT,
+        MT.TURN_TO_HEADING,
     )
 )
 
@@ -96,7 +100,7 @@ class MovementManager:
         if ms.type in _MOVE_TO_TYPES:
             self.make_move_to_manager()
             return self.moveto_manager.perform_movement(ms)
-        return MovementError.GENERAL_MOVEMENT_FAILURE
+        return ME.GENERAL_MOVEMENT_FAILURE
 
     def move_to_interpreted_state(self, state: InterpretedMotionState) -> None:
         """Retail: MovementManager::move_to_interpreted_state @ 0x00524170 (acclient.c:339220)"""

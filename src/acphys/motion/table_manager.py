@@ -14,9 +14,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from acphys.flags import member_namespace
 from acphys.motion.commands import ACTION_MASK, MODIFIER_MASK, READY, STYLE_MASK, SUBSTATE_MASK
 from acphys.motion.motion_table import MotionState
 from acphys.motion.movement import MovementError, MovementStruct, MovementType
+
+ME = member_namespace(MovementError)
+MT = member_namespace(MovementType)
 
 if TYPE_CHECKING:
     from acphys.motion.motion_table import MotionTable
@@ -72,23 +76,23 @@ class MotionTableManager:
         Retail: MotionTableManager::PerformMovement @ 0x0051C0B0 (acclient.c:330205)
         """
         if self.table is None:
-            return MovementError.NO_ANIMATION_TABLE
-        if ms.type == MovementType.INTERPRETED_COMMAND:
+            return ME.NO_ANIMATION_TABLE
+        if ms.type == MT.INTERPRETED_COMMAND:
             ok, num_anims = self.table.do_object_motion(ms.motion, self.state, seq, ms.params.speed)
             if not ok:
-                return MovementError.NO_MTABLE_DATA
+                return ME.NO_MTABLE_DATA
             self.add_to_queue(ms.motion, num_anims, seq)
-            return MovementError.NONE
-        if ms.type == MovementType.STOP_INTERPRETED_COMMAND:
+            return ME.NONE
+        if ms.type == MT.STOP_INTERPRETED_COMMAND:
             ok, num_anims = self.table.stop_object_motion(ms.motion, ms.params.speed, self.state, seq)
             if not ok:
-                return MovementError.NO_MTABLE_DATA
+                return ME.NO_MTABLE_DATA
             self.add_to_queue(READY, num_anims, seq)
-            return MovementError.NONE
-        if ms.type == MovementType.STOP_COMPLETELY:
+            return ME.NONE
+        if ms.type == MT.STOP_COMPLETELY:
             _, num_anims = self.table.stop_object_completely(self.state, seq)
             self.add_to_queue(READY, num_anims, seq)
-            return MovementError.NONE
+            return ME.NONE
         raise ValueError(
             f"MotionTableManager.perform_movement handles interpreted commands, stops and full stops, "
             f"not {ms.type!r}"

@@ -39,6 +39,7 @@ if TYPE_CHECKING:
     from acphys.transition.transition import Transition
 
 TS = member_namespace(TransitionState)
+IT = member_namespace(InsertType)
 
 #: ``find_placement_pos``: rings reach out to this distance (m), 2 m for a sphere under 0.125 m.
 PLACEMENT_ADJUST_DISTANCE = 4.0
@@ -199,10 +200,10 @@ def find_placement_position(transition: Transition) -> bool:
     """
     path = transition.sphere_path
     _reset_check_pos(transition)
-    path.insert_type = InsertType.INITIAL_PLACEMENT
+    path.insert_type = IT.INITIAL_PLACEMENT
     if validate_placement(transition, placement_insert(transition), True) != TS.OK:
         return False
-    path.insert_type = InsertType.PLACEMENT
+    path.insert_type = IT.PLACEMENT
     if not find_placement_pos(transition):
         return False
     info = transition.object_info
@@ -211,7 +212,7 @@ def find_placement_position(transition: Transition) -> bool:
         path.walkable_allowance = LANDING_Z
         path.save_check_pos()
         path.backup = path.insert_type
-        path.insert_type = InsertType.TRANSITION
+        path.insert_type = IT.TRANSITION
         sphere = path.global_sphere[0]
         if path.num_sphere < 2 and sphere.radius + sphere.radius < step_down_ht:
             step_down_ht = f32(sphere.radius * 0.5)

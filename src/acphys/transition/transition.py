@@ -65,6 +65,7 @@ __all__ = ["MAX_TRANSITION_LEVEL", "InsertType", "SpherePath", "Transition"]
 
 TS = member_namespace(TransitionState)
 OI = member_namespace(ObjectInfoState)
+IT = member_namespace(InsertType)
 
 #: ``makeTransition`` hands out at most ten nested transitions (acclient.c:312564).
 MAX_TRANSITION_LEVEL = 10
@@ -220,7 +221,7 @@ class Transition:
 
         Retail: CTransition::find_valid_position @ 0x0050C310 (acclient.c:313418)
         """
-        if self.sphere_path.insert_type == InsertType.TRANSITION:
+        if self.sphere_path.insert_type == IT.TRANSITION:
             return self.find_transitional_position()
         try:
             from acphys.transition.placement import find_placement_position
@@ -471,7 +472,7 @@ class Transition:
         Retail: CTransition::check_collisions @ 0x0050AA00 (acclient.c:312174)
         """
         path = self.sphere_path
-        path.insert_type = InsertType.PLACEMENT
+        path.insert_type = IT.PLACEMENT
         path.set_check_pos(path.curr_pos, path.curr_cell)
         return obj.find_obj_collisions(self) != TS.OK
 
@@ -561,7 +562,7 @@ class Transition:
         path.collide = False
         if info.contact_plane_valid and self.check_walkable(LANDING_Z):
             path.backup = path.insert_type
-            path.insert_type = InsertType.PLACEMENT
+            path.insert_type = IT.PLACEMENT
             ts = self.transitional_insert(num_insertion_attempts)
             path.insert_type = path.backup
             path.walkable = None
@@ -636,7 +637,7 @@ class Transition:
         if self.object_info.state & OI.EDGE_SLIDE and not path.step_up and not self.check_walkable(z_val):
             return False
         path.backup = path.insert_type
-        path.insert_type = InsertType.PLACEMENT
+        path.insert_type = IT.PLACEMENT
         ts = self.transitional_insert(1)
         path.insert_type = path.backup
         return ts == TS.OK

@@ -44,6 +44,7 @@ from acphys.geometry.polygon import Polygon
 from acphys.geometry.sphere import Sphere
 from acphys.math.cell_id import (
     adjust_to_outside,
+    adjust_to_outside_lcoord,
     format_cell_id,
     get_block_offset,
     gid_to_lcoord,
@@ -63,6 +64,7 @@ if TYPE_CHECKING:
 OI = member_namespace(ObjectInfoState)
 PS = member_namespace(PhysicsState)
 TS = member_namespace(TransitionState)
+WT = member_namespace(WaterType)
 #: ``Sidedness.POSITIVE`` read once: an enum member read through its class is slow (see ``member_namespace``).
 _POSITIVE = Sidedness.POSITIVE
 
@@ -253,7 +255,7 @@ class LandCell(SortCell):
             return result
         info = transition.object_info
         if (
-            self.get_block_water_type() == WaterType.ENTIRELY_WATER
+            self.get_block_water_type() == WT.ENTIRELY_WATER
             and not info.state & OI.IS_VIEWER
             and not info.object.state & PS.MISSILE
         ):
@@ -264,7 +266,7 @@ class LandCell(SortCell):
         return info.validate_walkable(
             check_pos,
             walkable.plane,
-            self.water_type != WaterType.NOT_WATER,
+            self.water_type != WT.NOT_WATER,
             water_depth,
             path,
             transition.collision_info,
@@ -379,8 +381,9 @@ class LandCell(SortCell):
             return
         for sphere in spheres:
             point = sphere.center.copy()
-            cell_id = adjust_to_outside(p.objcell_id, point)
-            if not cell_id:
+            # adjust_to_outside, then gid_to_lcoord of the cell it gives: never None once on the world
+            lcoord = adjust_to_outside_lcoord(p.objcell_id, point)
+            if lcoord is None:
                 break
             radius = sphere.radius
             in_x, in_y, max_rad = unpack3(
@@ -390,12 +393,9 @@ class LandCell(SortCell):
                     CELL_LENGTH - radius,
                 )
             )
-            lcoord = gid_to_lcoord(cell_id)
-            if lcoord is not None:
-                LandCell.add_outside_cell(cell_array, *lcoord)
-                LandCell.check_add_cell_boundary(
-                    cell_array, (in_x, in_y), lcoord[0], lcoord[1], max_rad, radius
-                )
+            x, y = lcoord
+            LandCell.add_outside_cell(cell_array, x, y)
+            LandCell.check_add_cell_boundary(cell_array, (in_x, in_y), x, y, max_rad, radius)
 
     @staticmethod
     def add_all_outside_cells_for_parts(parts: Sequence[PhysicsPart], cell_array: CellArray) -> None:

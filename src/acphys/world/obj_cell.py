@@ -67,6 +67,8 @@ if TYPE_CHECKING:
 
 OI = member_namespace(ObjectInfoState)
 TS = member_namespace(TransitionState)
+WT = member_namespace(WaterType)
+IT = member_namespace(InsertType)
 
 #: ``DetectionType`` values the voyeur calls send (acclient.h:6075).
 ENTERED_DETECTION = 1
@@ -271,7 +273,7 @@ class ObjCell:
         if isinstance(cell_id, bool) or not isinstance(cell_id, int) or not 0 <= cell_id <= 0xFFFFFFFF:
             raise ValueError(f"cell id must be a 32-bit integer, got {cell_id!r}")
         self.id = cell_id
-        self.water_type = WaterType.NOT_WATER
+        self.water_type = WT.NOT_WATER
         self.pos = Position(cell_id)
         self.objects: list[PhysicsObj] = []
         self.shadow_objects: list[ShadowObj] = []
@@ -543,7 +545,7 @@ class ObjCell:
         Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
         """
         path = transition.sphere_path
-        if path.insert_type == InsertType.INITIAL_PLACEMENT:
+        if path.insert_type == IT.INITIAL_PLACEMENT:
             return TS.OK
         result = TS.OK
         mover = transition.object_info.object
@@ -640,7 +642,7 @@ class ObjCell:
 
         Retail: CObjCell::get_block_water_type @ 0x0052AD90 (acclient.c:346438)
         """
-        return self.landblock.water_type if self.landblock is not None else WaterType.NOT_WATER
+        return self.landblock.water_type if self.landblock is not None else WT.NOT_WATER
 
     def get_water_depth(self, point: Vector3) -> float:
         """0 for a dry cell, 0.9 for an all-water one; a partly wet one asks its landblock at
@@ -648,9 +650,9 @@ class ObjCell:
 
         Retail: CObjCell::get_water_depth @ 0x0052B8A0 (acclient.c:347232)
         """
-        if self.water_type == WaterType.ENTIRELY_WATER:
+        if self.water_type == WT.ENTIRELY_WATER:
             return ENTIRELY_WATER_DEPTH
-        if self.water_type != WaterType.PARTIALLY_WATER:
+        if self.water_type != WT.PARTIALLY_WATER:
             return 0.0
         if self.landblock is None:
             return SOLID_VERTEX_WATER_DEPTH

@@ -18,7 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 from acphys.constants import BLOCK_LENGTH, MAX_ELASTICITY
 from acphys.flags import TransientState
@@ -291,18 +291,18 @@ def _setup_lookup(ctx: Ctx, setups: dict[str, Setup], data: RetailData, tables: 
 #: Finds a body's ``motion_table`` by its key and value (:func:`_motion_table`).
 TableLookup = Callable[[str, Any], MotionTable | None]
 
-_Found = TypeVar("_Found")
 
-
-def _shared(find: Callable[[str, Any], _Found]) -> Callable[[str, Any], _Found]:
-    """``find`` called once per name: every body naming the same setup or motion table gets the
-    same object, as retail objects share the cached DAT ``CSetup`` and ``CMotionTable`` (each
-    body keeps its own state in its part array, sequence and motion-table manager). A value
-    that is not a name, or a name ``find`` refuses, is looked up (and reported) each time.
+def _shared(find: SetupLookup) -> SetupLookup:
+    """``find`` called once per setup name: every body naming the same setup gets the same
+    object, as retail objects share the cached DAT ``CSetup`` (each body keeps its own state in
+    its part array). Built-in and DAT setups are made afresh by each call of ``find``; motion
+    tables need no such wrapper, they are shared where they are made (:class:`Tables`,
+    ``RetailData.motion_table``). A value that is not a name, or a name ``find`` refuses, is
+    looked up (and reported) each time.
     """
-    found: dict[str, _Found] = {}
+    found: dict[str, Setup] = {}
 
-    def lookup(key: str, value: Any) -> _Found:
+    def lookup(key: str, value: Any) -> Setup:
         if not isinstance(value, str):
             return find(key, value)
         if value not in found:
@@ -516,7 +516,10 @@ def build_scenario(
         with ctx.part():
             read_buildings(ctx, document.get("building", []), world)
         find_setup = _shared(_setup_lookup(ctx, setups, data, tables))
-        find_table = _shared(lambda key, value: _motion_table(ctx, key, value, tables, data))
+
+        def find_table(key: str, value: Any) -> MotionTable | None:
+            return _motion_table(ctx, key, value, tables, data)
+
         objects: list[PhysicsObj] = []
         with ctx.part():
             objects = read_objects(ctx, document.get("object", []), world, find_setup)

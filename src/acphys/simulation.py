@@ -88,6 +88,17 @@ class Physics:
         self.last_update = self.world.cur_time
         return True
 
+    def apply_events(self, events: list[Event], body_named: Callable[[str], PhysicsObj]) -> None:
+        """Apply ``events`` in order, each to the body it names (before this tick's ``use_time``)."""
+        for event in events:
+            event.apply(body_named(event.body))
+
+    def sync_objects(self) -> None:
+        """Make every body's object current (the reference path's always are)."""
+
+    def set_trace_writer(self, writer: Any) -> None:
+        """The trace being written, if any (the reference path's bodies write their own records)."""
+
 
 #: A scheduled change to a body: applied when the driver clock reaches ``at``.
 @dataclass(order=True)
@@ -97,6 +108,22 @@ class Event:
     action: str = field(compare=False)
     apply: Callable[[PhysicsObj], None] = field(compare=False, repr=False)
     source: str = field(compare=False, default="")
+
+
+#: The engines a simulation can run on (``Simulation(engine=...)``).
+ENGINES = ("reference", "fast")
+
+
+def make_physics(world: World, engine: str) -> Physics:
+    """The ``CPhysics`` of ``engine``: the plain-Python reference, or the compiled fast engine
+    (:mod:`acphys.fast`) that falls back to it body-step by body-step."""
+    if engine == "reference":
+        return Physics(world)
+    if engine == "fast":
+        from acphys.fast.engine import FastPhysics
+
+        return FastPhysics(world)
+    raise ValueError(f"engine must be one of {', '.join(ENGINES)}, got {engine!r}")
 
 
 #: The driver clock ticks on a grid of 2^-30 s (about a nanosecond).
@@ -141,13 +168,15 @@ class Simulation:
         driver_hz: float = 60.0,
         duration: float = 10.0,
         name: str = "",
+        engine: str = "reference",
     ) -> None:
         if not MIN_DRIVER_HZ <= driver_hz <= MAX_DRIVER_HZ:
             raise ValueError(
                 f"driver_hz must be in [{MIN_DRIVER_HZ:g}, {MAX_DRIVER_HZ:g}] Hz, got {driver_hz}"
             )
         self.world = world
-        self.physics = Physics(world)
+        self.engine = engine
+        self.physics = make_physics(world, engine)
         self.driver_hz = driver_hz
         self.tick_seconds = driver_tick_seconds(driver_hz)
         self.duration = duration
@@ -187,15 +216,21 @@ class Simulation:
         return self.world.cur_time
 
     def step(self) -> None:
-        """One driver tick: advance the clock, apply due events, run ``CPhysics::UseTime``."""
+        """One driver tick: advance the clock, apply due events, run ``CPhysics::UseTime``; every
+        body's object is current afterwards."""
+        self._tick()
+        self.physics.sync_objects()
+
+    def _tick(self) -> None:
         self.tick += 1
         self.world.cur_time = self.tick * self.tick_seconds
+        first = self._next_event
         while (
             self._next_event < len(self._events) and self._events[self._next_event].at <= self.world.cur_time
         ):
-            event = self._events[self._next_event]
-            event.apply(self.body(event.body))
             self._next_event += 1
+        if self._next_event > first:
+            self.physics.apply_events(self._events[first : self._next_event], self.body)
         self.physics.use_time()
 
     def check_until(self, until: float) -> None:
@@ -230,13 +265,18 @@ class Simulation:
 
         with TraceWriter(trace) as writer:
             writer.attach(self.bodies)
+            self.physics.set_trace_writer(writer)
             try:
                 self._run_until(end, progress)
             finally:
+                self.physics.set_trace_writer(None)
                 writer.detach(self.bodies)
 
     def _run_until(self, end: float, progress: Callable[[float, float], Any] | None) -> None:
-        while self.world.cur_time < end:
-            self.step()
-            if progress is not None:
-                progress(self.world.cur_time, end)
+        try:
+            while self.world.cur_time < end:
+                self._tick()
+                if progress is not None:
+                    progress(self.world.cur_time, end)
+        finally:
+            self.physics.sync_objects()

@@ -123,9 +123,13 @@ class TraceWriter:
                 body.observer = None
 
     def write_step(self, body: PhysicsObj, quantum: float) -> None:
+        self.write_record(step_record(body, quantum))
+
+    def write_record(self, record: dict[str, Any]) -> None:
+        """Write one record (a :func:`step_record`, or the fast engine's equivalent)."""
         if self._file is None:
             raise RuntimeError("TraceWriter is not open; use it as a context manager")
-        self._file.write(json.dumps(step_record(body, quantum), allow_nan=False))
+        self._file.write(json.dumps(record, allow_nan=False))
         self._file.write("\n")
         self.records += 1
 

@@ -429,11 +429,13 @@ def parse_scenario(
     source: str = "<scenario>",
     default_name: str = "scenario",
     folder: str | Path | None = None,
+    engine: str = "reference",
 ) -> Simulation:
     """Build a :class:`Simulation` from scenario TOML text; ``source`` names it in errors.
 
     ``folder`` is where relative ``[data]`` paths resolve (the scenario file's folder; the
-    current directory when None).
+    current directory when None). ``engine`` is ``"reference"`` or ``"fast"`` (see
+    :mod:`acphys.fast`).
     """
     read.check_toml_limits(source, text)
     try:
@@ -442,7 +444,7 @@ def parse_scenario(
         raise ScenarioError(one_line(f"{source}: not valid TOML: nested too deeply to read")) from None
     except ValueError as error:  # TOMLDecodeError, or a number Python will not convert
         raise ScenarioError(one_line(f"{source}: not valid TOML: {error}")) from None
-    return build_scenario(document, source, default_name, folder, read.TomlLines(text))
+    return build_scenario(document, source, default_name, folder, read.TomlLines(text), engine)
 
 
 def _read_bodies(
@@ -486,6 +488,7 @@ def build_scenario(
     default_name: str = "scenario",
     folder: str | Path | None = None,
     lines: read.TomlLines | None = None,
+    engine: str = "reference",
 ) -> Simulation:
     """Build a :class:`Simulation` from a scenario already read into Python values (what
     ``tomllib`` gives for the TOML), checking every key as :func:`parse_scenario` does.
@@ -547,6 +550,7 @@ def build_scenario(
         driver_hz=header.driver_hz,
         duration=header.duration,
         name=header.name,
+        engine=engine,
     )
     sim.warnings = ctx.warnings
     return sim
@@ -559,15 +563,18 @@ def builtin_scenario_text(name: str) -> str:
     return resources.files("acphys.data.scenarios").joinpath(f"{name}.toml").read_text("utf-8")
 
 
-def load_scenario(path: str | Path | None = None) -> Simulation:
+def load_scenario(path: str | Path | None = None, engine: str = "reference") -> Simulation:
     """Load a scenario file, or the embedded default scenario when ``path`` is None.
 
     A name without a path that matches a built-in scenario (``"default"``) loads that one. The
-    file must be a regular file of at most ``MAX_SCENARIO_BYTES`` of UTF-8 text.
+    file must be a regular file of at most ``MAX_SCENARIO_BYTES`` of UTF-8 text. ``engine`` is
+    ``"reference"`` (plain Python, the truth) or ``"fast"`` (compiled, :mod:`acphys.fast`).
     """
     if path is None or (isinstance(path, str) and path in builtin_scenarios()):
         name = DEFAULT_SCENARIO if path is None else str(path)
-        return parse_scenario(builtin_scenario_text(name), source=f"<built-in {name}>", default_name=name)
+        return parse_scenario(
+            builtin_scenario_text(name), source=f"<built-in {name}>", default_name=name, engine=engine
+        )
     file = Path(path)
     source = one_line(str(file))
     bare_name = isinstance(path, str) and file.suffix == "" and len(file.parts) == 1  # a built-in's?
@@ -580,7 +587,9 @@ def load_scenario(path: str | Path | None = None) -> Simulation:
         if error.errno == errno.ENOENT:
             raise ScenarioError(f"{source}: no such file") from None
         raise ScenarioError(f"{source}: cannot read: {error.strerror}") from None
-    return parse_scenario(_utf8(source, data), source=source, default_name=file.stem, folder=file.parent)
+    return parse_scenario(
+        _utf8(source, data), source=source, default_name=file.stem, folder=file.parent, engine=engine
+    )
 
 
 def _utf8(source: str, data: bytes) -> str:

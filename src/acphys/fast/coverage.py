@@ -1,0 +1,68 @@
+"""Which bodies the kernel may step: those whose state outside their record is idle.
+
+A body's record (:data:`acphys.fast.layout.BODY`) holds what a step of a body reads and writes
+while nothing else about the body is going on. :func:`uncovered_reason` names the first thing
+that is going on (a manager at work, a hook waiting, a shape the kernel does not sweep, ...);
+such a body runs on the reference path until it is idle again. The kernel itself hands a step
+back when it meets something it does not cover mid-step (see :mod:`acphys.fast.kernels.tick`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from acphys.fast.layout import MAX_CELLS, MAX_SPHERES
+from acphys.flags import PhysicsState, TransientState
+from acphys.physics_obj import PhysicsObj
+
+_SHAPE_STATES = PhysicsState.PARTICLE_EMITTER | PhysicsState.HAS_PHYSICS_BSP
+#: Physics-state bits whose handling the kernel leaves to the reference path.
+_UNCOVERED_STATES = _SHAPE_STATES | PhysicsState.HIDDEN | PhysicsState.ALIGN_PATH | PhysicsState.SLEDDING
+
+
+def uncovered_reason(
+    body: PhysicsObj, cell_index: Callable[[int], int], observer: object | None = None
+) -> str | None:
+    """Why the kernel cannot step ``body`` now, or None when it can. ``cell_index`` maps a cell
+    id to the kernel's index (-1: unknown); ``observer`` is the engine's own step observer."""
+    if body.parent is not None or (body.children is not None and body.children.objects):
+        return "held or holding"
+    parts = body.part_array
+    if parts is None:
+        return "no part array"
+    setup = parts.setup
+    if setup.parts is not None or setup.cylspheres or setup.physics_bsp is not None:
+        return "shape: parts, cylspheres or a BSP"
+    if not 1 <= len(setup.spheres) <= MAX_SPHERES:
+        return "shape: not one or two spheres"
+    if body.state & _UNCOVERED_STATES or body.transient_state & TransientState.CHECK_ETHEREAL:
+        return "state"
+    managers = (
+        body.movement_manager,
+        body.position_manager,
+        body.detection_manager,
+        body.target_manager,
+        body.particle_manager,
+        body.script_manager,
+        parts.motion_table_manager,
+    )
+    if any(manager is not None for manager in managers):
+        return "managers"
+    if parts.sequence.anim_list:
+        return "animation"
+    if body.hooks or body.anim_hooks or body.step_events:
+        return "hooks or events waiting"
+    if body.weenie_obj is not None or body.on_collision is not None:
+        return "a weenie or a collision callback"
+    if body.collision_table is not None and body.collision_table.ids():
+        return "collision records"
+    if body.observer is not None and body.observer != observer:
+        return "an observer"
+    if body.cell is not None and cell_index(body.position.objcell_id) < 0:
+        return "not in a known land cell"
+    shadows = body.shadow_objects
+    if len(shadows) > MAX_CELLS or any(
+        shadow.cell is not None and cell_index(shadow.cell_id) < 0 for shadow in shadows
+    ):
+        return "shadows in cells the kernel does not know"
+    return None

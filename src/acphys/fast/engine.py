@@ -1,0 +1,345 @@
+"""The fast engine's clock: ``CPhysics::UseTime`` over records, with the reference path behind it.
+
+:class:`FastPhysics` replaces :class:`acphys.simulation.Physics` in a simulation made with
+``engine="fast"``. Each ``use_time`` walks the bodies in object-table order, as the reference
+does, but hands runs of them to the compiled kernel (:func:`acphys.fast.kernels.tick.run_bodies`),
+which steps every body it covers and stops at the first it does not. That body's update runs on
+the reference path (``PhysicsObj.update_object``), in its place in the order, with its world
+brought up to date first and its record read back after; then the kernel goes on from the next
+body. The share of body-steps that ran on the reference path is counted (:attr:`counts`).
+
+Hand-off, both ways, is exact: records hold the float32 and double values the objects hold. What
+the kernel changed and the objects do not know yet (positions, cells, shadow lists) is written
+back lazily, before anything reads the objects: a reference step, an event, the end of a run
+(:meth:`FastPhysics.flush`). Between two public ``Simulation.step`` calls the user may change
+bodies directly, so after a flush the records are read again before the next kernel run.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from acphys.constants import MIN_QUANTUM
+from acphys.fast.coverage import uncovered_reason
+from acphys.fast.kernels import tick as kernels
+from acphys.fast.layout import BODY, TRANSITION
+from acphys.fast.pool import transition_from_pool, transition_to_pool
+from acphys.fast.sync import load_body, store_body
+from acphys.fast.world_arrays import WorldArrays, build_world_arrays, shadow_entries
+from acphys.flags import TransientState, flag_names
+from acphys.math.cell_id import format_cell_id
+from acphys.physics_obj import PhysicsObj
+from acphys.simulation import Physics
+from acphys.world.obj_cell import SHADOW_INDEX_MIN, ShadowObj
+from acphys.world.world import World
+
+#: Kernel log rows held before the engine writes them out (a row is one traced body-step).
+LOG_ROWS = 4096
+
+
+@dataclass
+class Counts:
+    """Body-steps taken by each path (``update_object_internal`` calls)."""
+
+    kernel: int = 0
+    reference: int = 0
+
+    @property
+    def reference_share(self) -> float:
+        total = self.kernel + self.reference
+        return self.reference / total if total else 0.0
+
+
+class FastPhysics(Physics):
+    """``CPhysics`` over the kernel's records; see the module docstring."""
+
+    def __init__(self, world: World) -> None:
+        super().__init__(world)
+        self.counts = Counts()
+        self._bodies: list[PhysicsObj] = []
+        self._records = np.zeros(0, dtype=BODY)
+        self._arrays: WorldArrays | None = None
+        self._transition = np.zeros(1, dtype=TRANSITION)
+        self._clock = np.zeros(4, dtype=np.float64)
+        self._log = np.zeros((LOG_ROWS, kernels.LOG_WIDTH), dtype=np.float64)
+        self._moves = np.zeros((LOG_ROWS, 3), dtype=np.int32)
+        self._counters = np.zeros(kernels.NUM_COUNTERS, dtype=np.int64)
+        self._journal = np.zeros((kernels.JOURNAL_ROWS, 3), dtype=np.int64)
+        self._index: dict[int, int] = {}
+        #: True once the objects may have changed behind the records (a flush, a new body).
+        self._reload = True
+        self._writer: Any = None
+
+    # -- bodies and arrays -------------------------------------------------------------------
+
+    def add(self, obj: PhysicsObj) -> None:
+        self.flush()
+        super().add(obj)
+        self._arrays = None
+
+    def _build(self) -> None:
+        """Number the bodies in table order and make the world's arrays and every record."""
+        self._bodies = self._walk_order()
+        self._index = {id(body): i for i, body in enumerate(self._bodies)}
+        self._records = np.zeros(len(self._bodies), dtype=BODY)
+        self._arrays = build_world_arrays(self.world, self._bodies)
+        self._reload = True
+
+    def _load(self, i: int) -> None:
+        """Read body ``i`` into its record, its cells' shadow slots included."""
+        assert self._arrays is not None
+        body = self._bodies[i]
+        arrays = self._arrays
+        cell = arrays.cell_index(body.position.objcell_id) if body.cell is not None else -1
+        observer = self._writer.write_step if self._writer is not None else None
+        reason = "gone"
+        if self.world.has_object(body):
+            reason = uncovered_reason(body, arrays.cell_index, observer)
+        record = self._records[i]
+        load_body(record, body, cell, reason is None)
+        shadows = body.shadow_objects[: record["shadow_cell"].size]
+        record["num_shadow"] = len(shadows)
+        for s, shadow in enumerate(shadows):
+            record["shadow_cell_id"][s] = shadow.cell_id
+            record["shadow_cell"][s] = arrays.cell_index(shadow.cell_id) if shadow.cell is not None else -1
+            record["shadow_slot"][s] = shadow.index
+
+    def _reload_all(self) -> None:
+        for i in range(len(self._bodies)):
+            self._load(i)
+        transition_from_pool(self._transition, self.world_arrays)
+        self._clock[1] = self.world.physics_time
+        self._reload = False
+
+    # -- the tick -----------------------------------------------------------------------------
+
+    def use_time(self) -> bool:
+        """``CPhysics::UseTime``: every body's ``update_object``, the covered ones in the kernel.
+
+        Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
+        """
+        elapsed = self.world.cur_time - self.last_update
+        if elapsed < 0.0:
+            self.last_update = self.world.cur_time
+            return False
+        if elapsed < MIN_QUANTUM:
+            return False
+        if self._arrays is None:
+            self._build()
+        if self._reload:
+            self._reload_all()
+        self._run_kernel()
+        self.last_update = self.world.cur_time
+        return True
+
+    def _run_kernel(self) -> None:
+        assert self._arrays is not None
+        arrays = self.world_arrays
+        player = self.world.player
+        self._clock[0] = self.world.cur_time
+        self._clock[2] = self._index.get(id(player), -1) if player is not None else -1
+        self._clock[3] = 1.0 if self.world.activity_cull else 0.0
+        tracing = self._writer is not None
+        start = 0
+        while start < len(self._bodies):
+            status, start = kernels.run_bodies(
+                self._records,
+                arrays.cells,
+                arrays.landblock_index,
+                arrays.shadow_pool,
+                self._transition,
+                self._clock,
+                start,
+                tracing,
+                self._log,
+                self._moves,
+                self._counters,
+                self._journal,
+            )
+            self.counts.kernel += int(self._counters[kernels.STEPS])
+            self._counters[kernels.STEPS] = 0
+            self._write_log()
+            if status == kernels.GROW:
+                arrays.grow(int(self._counters[kernels.GROW_CELL]))
+            elif status == kernels.FALLBACK:
+                self._reference_update(start)
+                start += 1
+        self.world.physics_time = float(self._clock[1])
+
+    def _reference_update(self, i: int) -> None:
+        """Body ``i``'s ``update_object`` on the reference path, its world up to date."""
+        body = self._bodies[i]
+        self.flush()
+        self.world.physics_time = float(self._clock[1])
+        if self.world.has_object(body):
+            steps = _StepCounter(body)
+            try:
+                body.update_object()
+            finally:
+                steps.detach()
+            self.counts.reference += steps.count
+            transition_from_pool(self._transition, self.world_arrays)
+        self._clock[1] = self.world.physics_time
+        self._reload_after(i)
+
+    def _reload_after(self, i: int) -> None:
+        """Read back body ``i`` and the cells its shadows left or entered, and anybody it reported
+        a collision to."""
+        assert self._arrays is not None
+        arrays = self._arrays
+        record = self._records[i]
+        body = self._bodies[i]
+        touched = {int(k) for k in record["shadow_cell"][: record["num_shadow"]] if k >= 0}
+        touched |= {arrays.cell_index(s.cell_id) for s in body.shadow_objects if s.cell is not None}
+        touched.discard(-1)
+        for k in touched:
+            arrays.set_shadow_list(k, shadow_entries(arrays, k, arrays.land_cells[k], self._index))
+        others = {i}
+        if body.collision_table is not None:
+            others |= {self._index[id(o)] for o in map(self.world.get_object, body.collision_table.ids())
+                       if o is not None and id(o) in self._index}
+        for k in touched:
+            others |= {int(e) for e in arrays.shadow_list(k) if e >= 0}
+        for j in sorted(others):
+            self._load(j)
+
+    # -- writing back ---------------------------------------------------------------------------
+
+    def flush(self) -> None:
+        """Write everything the kernel changed back into the objects (cells, shadows, bodies)."""
+        if self._arrays is None or not len(self._records):
+            return
+        stale = np.flatnonzero(self._records["stale"])
+        moves = int(self._counters[kernels.MOVES])
+        if not len(stale) and not moves:
+            return
+        arrays = self._arrays
+        transition_to_pool(self._transition, arrays, self.world)
+        for body_index, old, new in self._moves[:moves].tolist():
+            body = self._bodies[body_index]
+            if old >= 0:
+                arrays.land_cells[old].remove_object(body)
+            if new >= 0:
+                cell = arrays.land_cells[new]
+                cell.add_object(body)
+                body.cell = cell
+        self._counters[kernels.MOVES] = 0
+        for i in stale.tolist():
+            record = self._records[i]
+            body = self._bodies[i]
+            store_body(record, body)
+            body.position.objcell_id = int(record["cell_id"])
+            if body.part_array is not None:
+                for part in body.part_array.parts:
+                    part.pos.objcell_id = body.position.objcell_id
+            if record["shadows_moved"]:
+                ids = record["shadow_cell_id"][: record["num_shadow"]].tolist()
+                body.shadow_objects = [ShadowObj(body, cell_id) for cell_id in ids]
+                record["shadows_moved"] = False
+            record["stale"] = False
+        cells = arrays.cells
+        for k in np.flatnonzero(cells["dirty"]).tolist():
+            self._write_cell(k)
+        cells["dirty"] = False
+
+    def sync_objects(self) -> None:
+        """Write the kernel's changes back, and read the objects again before the next run (the
+        user may change them in between)."""
+        self.flush()
+        self._reload = True
+
+    def apply_events(self, events: list[Any], body_named: Any) -> None:
+        """Apply events to up-to-date objects, then read every body again."""
+        self.flush()
+        super().apply_events(events, body_named)
+        self._reload = True
+
+    def _write_cell(self, k: int) -> None:
+        """Make the reference cell ``k``'s shadow list the kernel's."""
+        assert self._arrays is not None
+        arrays = self._arrays
+        cell = arrays.land_cells[k]
+        shadows: list[ShadowObj] = []
+        for entry in arrays.shadow_list(k).tolist():
+            if entry >= 0:
+                body = self._bodies[entry]
+                shadow = next(s for s in body.shadow_objects if s.cell_id == cell.id)
+            else:
+                shadow = arrays.other_shadows[(-1 - entry, k)]
+            shadow.cell = cell
+            shadow.index = len(shadows)
+            shadows.append(shadow)
+        cell.shadow_objects = shadows
+        cell.shadow_tiles = None
+        if len(shadows) >= SHADOW_INDEX_MIN:
+            cell._start_files()
+
+    # -- traces ------------------------------------------------------------------------------
+
+    def set_trace_writer(self, writer: Any) -> None:
+        """Write the kernel's steps to ``writer`` (a :class:`acphys.trace.TraceWriter`), or stop."""
+        self._writer = writer
+        self._reload = True
+
+    def _write_log(self) -> None:
+        rows = int(self._counters[kernels.LOGGED])
+        if rows and self._writer is not None:
+            for row in self._log[:rows]:
+                self._writer.write_record(self._record_of(row))
+        self._counters[kernels.LOGGED] = 0
+
+    def _record_of(self, row: np.ndarray) -> dict[str, Any]:
+        values = row.tolist()
+        body = self._bodies[int(values[0])]
+        transient = TransientState(int(values[20]))
+        events = []
+        bits = int(values[24])
+        if bits & kernels.EVENT_HIT_GROUND:
+            events.append("hit_ground")
+        if bits & kernels.EVENT_LEAVE_GROUND:
+            events.append("leave_ground")
+        if bits & kernels.EVENT_COLLISION_ENVIRONMENT:
+            events.append("collision:environment")
+        return {
+            "t": values[1],
+            "body": body.name,
+            "quantum": values[2],
+            "cell": format_cell_id(int(values[3])),
+            "origin": values[4:7],
+            "orientation": values[7:11],
+            "velocity": values[11:14],
+            "cached_velocity": values[14:17],
+            "omega": values[17:20],
+            "transient": flag_names(transient, TransientState),
+            "contact_normal": values[21:24] if transient & TransientState.CONTACT else None,
+            "events": events,
+        }
+
+    @property
+    def world_arrays(self) -> WorldArrays:
+        assert self._arrays is not None
+        return self._arrays
+
+
+class _StepCounter:
+    """Counts a body's reference steps by wrapping its observer for one update."""
+
+    def __init__(self, body: PhysicsObj) -> None:
+        self.body = body
+        self.count = 0
+        self.inner = body.observer
+        body.observer = self._observe
+
+    def _observe(self, body: PhysicsObj, quantum: float) -> None:
+        self.count += 1
+        if self.inner is not None:
+            self.inner(body, quantum)
+
+    def detach(self) -> None:
+        self.body.observer = self.inner
+
+
+__all__ = ["Counts", "FastPhysics"]

@@ -1,0 +1,1 @@
+"""Numba kernels of the fast engine: ports of the reference engine's tick over records."""

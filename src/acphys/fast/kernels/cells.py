@@ -1,0 +1,172 @@
+"""Kernel cells: which land cells a sweep's spheres touch, the terrain under a point, and the
+shadows of other bodies in a cell.
+
+Ports of :mod:`acphys.world.land_cell` and of the outdoor half of
+:meth:`acphys.world.obj_cell.ObjCell.find_cell_list`, over the :data:`~acphys.fast.layout.CELL`
+records. A cell id the kernel does not know (an env cell, a land cell of a landblock that is not
+loaded) gives the index -1, and whoever meets one hands the step back (``BAIL``).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from acphys.constants import CELL_LENGTH, MAX_LCOORD
+from acphys.fast.kernels.frame import adjust_to_outside_lcoord, f32, lcoord_to_gid
+from acphys.fast.layout import MAX_CELLS
+
+#: A transition state only the kernel returns: "the reference path must take this step".
+BAIL = -1
+
+
+@njit(cache=True, inline="always")
+def cell_index(landblock_index, cell_id):
+    """The kernel index of land cell ``cell_id``, or -1."""
+    low = cell_id & 0xFFFF
+    if low < 1 or low > 64:
+        return -1
+    block = landblock_index[(cell_id >> 16) & 0xFFFF]
+    if block < 0:
+        return -1
+    return 64 * block + low - 1
+
+
+@njit(cache=True)
+def cell_array_clear(tr):
+    """``CELLARRAY``: ``num_cells = 0; added_outside = 0`` (acclient.c:346987-346988)."""
+    tr.num_cells = 0
+    tr.added_outside = False
+
+
+@njit(cache=True)
+def cell_array_add(tr, landblock_index, cell_id):
+    """Append ``cell_id`` unless it is there; False when the array is full (the step bails).
+
+    Port of :meth:`acphys.world.obj_cell.CellArray.add_cell`.
+    Retail: CELLARRAY::add_cell @ 0x006B4FF0 (acclient.c:718895)
+    """
+    for i in range(tr.num_cells):
+        if tr.cell_ids[i] == cell_id:
+            return True
+    if tr.num_cells >= MAX_CELLS:
+        return False
+    tr.cell_ids[tr.num_cells] = cell_id
+    tr.cells[tr.num_cells] = cell_index(landblock_index, cell_id)
+    tr.num_cells += 1
+    return True
+
+
+@njit(cache=True)
+def add_outside_cell(tr, landblock_index, x, y):
+    """Add the land cell at global lcoord ``(x, y)`` when it is inside the world.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.add_outside_cell`.
+    Retail: CLandCell::add_outside_cell @ 0x00532EC0 (acclient.c:354974)
+    """
+    if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
+        return cell_array_add(tr, landblock_index, lcoord_to_gid(x, y))
+    return True
+
+
+@njit(cache=True)
+def check_add_cell_boundary(tr, landblock_index, px, py, x, y, incell_max, incell_min):
+    """Add the neighbours of cell ``(x, y)`` a circle at ``(px, py)`` within it reaches.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.check_add_cell_boundary`.
+    Retail: CLandCell::check_add_cell_boundary @ 0x00533260 (acclient.c:355161)
+    """
+    ok = True
+    if px > incell_max:
+        ok &= add_outside_cell(tr, landblock_index, x + 1, y)
+        if py > incell_max:
+            ok &= add_outside_cell(tr, landblock_index, x + 1, y + 1)
+        if py < incell_min:
+            ok &= add_outside_cell(tr, landblock_index, x + 1, y - 1)
+    if px < incell_min:
+        ok &= add_outside_cell(tr, landblock_index, x - 1, y)
+        if py > incell_max:
+            ok &= add_outside_cell(tr, landblock_index, x - 1, y + 1)
+        if py < incell_min:
+            ok &= add_outside_cell(tr, landblock_index, x - 1, y - 1)
+    if py > incell_max:
+        ok &= add_outside_cell(tr, landblock_index, x, y + 1)
+    if py < incell_min:
+        ok &= add_outside_cell(tr, landblock_index, x, y - 1)
+    return ok
+
+
+@njit(cache=True)
+def add_all_outside_cells(tr, landblock_index, cell_id):
+    """Once per array: every land cell the global spheres (in ``cell_id``'s landblock) overlap.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.add_all_outside_cells` (the kernel always has
+    spheres). Retail: CLandCell::add_all_outside_cells @ 0x00533630 (acclient.c:355345)
+    """
+    if tr.added_outside:
+        return True
+    tr.added_outside = True
+    ok = True
+    for s in range(tr.num_sphere):
+        center = (tr.global_sphere[s, 0], tr.global_sphere[s, 1], tr.global_sphere[s, 2])
+        on_world, lx, ly, point = adjust_to_outside_lcoord(cell_id, center)
+        if not on_world:
+            break
+        radius = tr.global_sphere[s, 3]
+        in_x = f32(point[0] - math.floor(point[0] / CELL_LENGTH) * CELL_LENGTH)
+        in_y = f32(point[1] - math.floor(point[1] / CELL_LENGTH) * CELL_LENGTH)
+        max_rad = f32(CELL_LENGTH - radius)
+        ok &= add_outside_cell(tr, landblock_index, lx, ly)
+        ok &= check_add_cell_boundary(tr, landblock_index, in_x, in_y, lx, ly, max_rad, radius)
+    return ok
+
+
+@njit(cache=True)
+def point_in_poly2d(cells, k, p, px, py):
+    """Whether ``(px, py)`` lies inside triangle ``p`` of cell ``k`` projected on the xy plane
+    (side POSITIVE: a positive cross value is outside).
+
+    Port of :meth:`acphys.geometry.polygon.Polygon.point_in_poly2D`.
+    Retail: CPolygon::point_in_poly2D @ 0x00538060 (acclient.c:359419)
+    """
+    vertex = cells[k].vertex
+    fx, fy = vertex[p, 0, 0], vertex[p, 0, 1]
+    for i in range(2, -1, -1):
+        vx, vy = vertex[p, i, 0], vertex[p, i, 1]
+        ey = fy - vy
+        ex = vx - fx
+        value = -(ey * vx) - ex * vy + ex * py + ey * px
+        if value > 0.0:
+            return False
+        fx, fy = vx, vy
+    return True
+
+
+@njit(cache=True)
+def find_terrain_poly(cells, k, px, py):
+    """The first of cell ``k``'s triangles whose xy projection holds the point, or -1.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.find_terrain_poly`.
+    Retail: CLandCell::find_terrain_poly @ 0x00532CF0 (acclient.c:354858)
+    """
+    for p in range(cells[k].num_polys):
+        if point_in_poly2d(cells, k, p, px, py):
+            return p
+    return -1
+
+
+@njit(cache=True)
+def point_in_cell(cells, k, px, py):
+    """Whether the landblock-local point lies over one of cell ``k``'s triangles.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.point_in_cell` (for cells with terrain; a
+    cell without is its 24-m square, low edges closed).
+    Retail: CLandCell::point_in_cell @ 0x00532D40 (acclient.c:354880)
+    """
+    if cells[k].num_polys == 0:
+        low = (cells[k].cell_id & 0xFFFF) - 1
+        x0 = (low // 8) * CELL_LENGTH
+        y0 = (low % 8) * CELL_LENGTH
+        return x0 <= px < x0 + CELL_LENGTH and y0 <= py < y0 + CELL_LENGTH
+    return find_terrain_poly(cells, k, px, py) >= 0

@@ -1,0 +1,1114 @@
+"""The kernel's ``CTransition``: a body's sweep over outdoor terrain, among other bodies.
+
+Ports of :mod:`acphys.transition.transition`, :mod:`acphys.transition.sphere_path`,
+:mod:`acphys.transition.object_info` and :mod:`acphys.transition.collision_info` for what an
+outdoor sweep meets: the terrain triangles of land cells (``validate_walkable``) and other
+bodies' shadows that stay out of reach. Everything else (a body within reach, a static object,
+a building, water depth of a partly wet cell, a cell the kernel does not know, nesting deeper than
+``LEVELS``) hands the step back to the reference path: every routine returns ``BAIL`` (-1) up the
+chain, and the tick restores the body as it was.
+
+The transition record ``tr`` (:data:`~acphys.fast.layout.TRANSITION`) is retail's pooled
+transition; ``w`` bundles the world: ``(bodies, cells, landblock_index, shadow_pool)``.
+
+Retail recurses (``transitional_insert`` → ``step_down`` → ``transitional_insert`` ...); Numba
+cannot cache recursive functions, so each nesting level is its own compiled function
+(``transitional_insert``, ``_insert_level_2`` ... ``_insert_level_5``), made of the one body
+``transitional_insert_body`` given the level below as ``deeper``; below the fifth the step bails.
+The body and the routines that nest (``step_down``, ``edge_slide``) are inlined into each level
+(``inline="always"``), so ``deeper`` is a constant there: passed on as a value, Numba would type
+it as a first-class function, which it cannot cache.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from acphys.constants import EPSILON, FLOOR_Z, LANDING_Z
+from acphys.fast.kernels.cells import (
+    BAIL,
+    add_all_outside_cells,
+    cell_array_clear,
+    cell_index,
+    find_terrain_poly,
+    point_in_cell,
+)
+from acphys.fast.kernels.frame import (
+    f32,
+    frame_interpolate_rotation,
+    frame_is_equal,
+    frame_set_rotate,
+    get_block_offset,
+    position_get_offset,
+    v_length,
+    v_normalize_check_small,
+)
+from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT
+from acphys.world.terrain import WaterType
+
+OK = int(TransitionState.OK)
+COLLIDED = int(TransitionState.COLLIDED)
+ADJUSTED = int(TransitionState.ADJUSTED)
+SLID = int(TransitionState.SLID)
+INVALID = int(TransitionState.INVALID)
+
+OI_CONTACT = int(ObjectInfoState.CONTACT)
+OI_ON_WALKABLE = int(ObjectInfoState.ON_WALKABLE)
+OI_IS_VIEWER = int(ObjectInfoState.IS_VIEWER)
+OI_PATH_CLIPPED = int(ObjectInfoState.PATH_CLIPPED)
+OI_FREE_ROTATE = int(ObjectInfoState.FREE_ROTATE)
+OI_EDGE_SLIDE = int(ObjectInfoState.EDGE_SLIDE)
+PS_GRAVITY = int(PhysicsState.GRAVITY)
+PS_MISSILE = int(PhysicsState.MISSILE)
+PS_ETHEREAL = int(PhysicsState.ETHEREAL)
+PS_STATIC = int(PhysicsState.STATIC)
+PS_IGNORE_COLLISIONS = int(PhysicsState.IGNORE_COLLISIONS)
+
+IT_TRANSITION = 0
+IT_PLACEMENT = 1
+IT_INITIAL_PLACEMENT = 2
+
+WT_NOT_WATER = int(WaterType.NOT_WATER)
+WT_PARTIALLY_WATER = int(WaterType.PARTIALLY_WATER)
+WT_ENTIRELY_WATER = int(WaterType.ENTIRELY_WATER)
+ENTIRELY_WATER_DEPTH = 0.9
+
+#: ``find_obj_collisions``' reach shortcut (``acphys.body.reports.REACH_MARGIN``).
+REACH_MARGIN = 1e-3
+
+
+@njit(cache=True, inline="always")
+def t3(a):
+    """A record's 3-array as the tuple the frame kernels take."""
+    return (a[0], a[1], a[2])
+
+
+@njit(cache=True, inline="always")
+def t4(a):
+    return (a[0], a[1], a[2], a[3])
+
+
+@njit(cache=True, inline="always")
+def t9(a):
+    return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8])
+
+
+# -- SPHEREPATH -----------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def cache_global_curr_center(tr):
+    """Place each local sphere centre in ``curr_pos``'s frame.
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_curr_center`.
+    Retail: SPHEREPATH::cache_global_curr_center @ 0x0050C740 (acclient.c:313696)
+    """
+    m, o = tr.curr_m, tr.curr_origin
+    for s in range(tr.num_sphere):
+        cx, cy, cz = tr.local_sphere[s, 0], tr.local_sphere[s, 1], tr.local_sphere[s, 2]
+        tr.global_curr_center[s, 0] = f32(cx * m[0] + cy * m[3] + cz * m[6] + o[0])
+        tr.global_curr_center[s, 1] = f32(m[7] * cz + cx * m[1] + m[4] * cy + o[1])
+        tr.global_curr_center[s, 2] = f32(m[8] * cz + m[5] * cy + m[2] * cx + o[2])
+
+
+@njit(cache=True)
+def cache_global_sphere_at_check(tr):
+    """Rebuild the global spheres and low point at ``check_pos``.
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_sphere` (``offset`` None).
+    Retail: SPHEREPATH::cache_global_sphere @ 0x0050C810 (acclient.c:313747)
+    """
+    m, o = tr.check_m, tr.check_origin
+    for s in range(tr.num_sphere):
+        cx, cy, cz = tr.local_sphere[s, 0], tr.local_sphere[s, 1], tr.local_sphere[s, 2]
+        tr.global_sphere[s, 0] = f32(cx * m[0] + cy * m[3] + cz * m[6] + o[0])
+        tr.global_sphere[s, 1] = f32(m[7] * cz + cx * m[1] + m[4] * cy + o[1])
+        tr.global_sphere[s, 2] = f32(m[8] * cz + m[2] * cx + m[5] * cy + o[2])
+        tr.global_sphere[s, 3] = tr.local_sphere[s, 3]
+    px, py, pz = tr.local_low_point[0], tr.local_low_point[1], tr.local_low_point[2]
+    tr.global_low_point[0] = f32(m[6] * pz + m[0] * px + m[3] * py + o[0])
+    tr.global_low_point[1] = f32(m[7] * pz + m[1] * px + m[4] * py + o[1])
+    tr.global_low_point[2] = f32(m[8] * pz + m[2] * px + m[5] * py + o[2])
+
+
+@njit(cache=True)
+def cache_global_sphere_offset(tr, dx, dy, dz):
+    """Move the global spheres and low point by an offset (float32 stores: Vector3 sums).
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_sphere` (with an offset).
+    Retail: SPHEREPATH::cache_global_sphere @ 0x0050C810 (acclient.c:313747)
+    """
+    for s in range(tr.num_sphere):
+        tr.global_sphere[s, 0] = f32(tr.global_sphere[s, 0] + dx)
+        tr.global_sphere[s, 1] = f32(tr.global_sphere[s, 1] + dy)
+        tr.global_sphere[s, 2] = f32(tr.global_sphere[s, 2] + dz)
+    tr.global_low_point[0] = f32(tr.global_low_point[0] + dx)
+    tr.global_low_point[1] = f32(tr.global_low_point[1] + dy)
+    tr.global_low_point[2] = f32(tr.global_low_point[2] + dz)
+
+
+@njit(cache=True)
+def add_offset_to_check_pos(tr, dx, dy, dz):
+    """Move ``check_pos`` and the global spheres; the cell array goes stale.
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.add_offset_to_check_pos`.
+    Retail: SPHEREPATH::add_offset_to_check_pos @ 0x00509D10 (acclient.c:311556)
+    """
+    tr.cell_array_valid = False
+    tr.check_origin[0] = f32(tr.check_origin[0] + dx)
+    tr.check_origin[1] = f32(tr.check_origin[1] + dy)
+    tr.check_origin[2] = f32(tr.check_origin[2] + dz)
+    cache_global_sphere_offset(tr, dx, dy, dz)
+
+
+@njit(cache=True)
+def set_check_pos_to_curr(tr):
+    """``set_check_pos(curr_pos, curr_cell)``: the candidate restarts where the sweep is.
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.set_check_pos`.
+    Retail: SPHEREPATH::set_check_pos @ 0x0050A8B0 (acclient.c:312090)
+    """
+    tr.check_cell_id = tr.curr_cell_id
+    tr.check_origin[:] = tr.curr_origin
+    tr.check_q[:] = tr.curr_q
+    tr.check_m[:] = tr.curr_m
+    tr.check_cell = tr.curr_cell
+    tr.cell_array_valid = False
+    cache_global_sphere_at_check(tr)
+
+
+@njit(cache=True)
+def save_check_pos(tr):
+    """Port of :meth:`acphys.transition.sphere_path.SpherePath.save_check_pos`.
+    Retail: SPHEREPATH::save_check_pos @ 0x0050A880 (acclient.c:312082)
+    """
+    tr.backup_cell = tr.check_cell
+    tr.backup_cell_id = tr.check_cell_id
+    tr.backup_origin[:] = tr.check_origin
+    tr.backup_q[:] = tr.check_q
+    tr.backup_m[:] = tr.check_m
+
+
+@njit(cache=True)
+def restore_check_pos(tr):
+    """Port of :meth:`acphys.transition.sphere_path.SpherePath.restore_check_pos`.
+    Retail: SPHEREPATH::restore_check_pos @ 0x0050B100 (acclient.c:312527)
+    """
+    tr.check_cell_id = tr.backup_cell_id
+    tr.check_origin[:] = tr.backup_origin
+    tr.check_q[:] = tr.backup_q
+    tr.check_m[:] = tr.backup_m
+    tr.check_cell = tr.backup_cell
+    tr.cell_array_valid = False
+    cache_global_sphere_at_check(tr)
+
+
+@njit(cache=True)
+def adjust_check_pos(tr, cell_id):
+    """Re-home ``check_pos`` into outdoor cell ``cell_id`` (shifting by the block offset).
+
+    Port of :meth:`acphys.transition.sphere_path.SpherePath.adjust_check_pos`.
+    Retail: SPHEREPATH::adjust_check_pos @ 0x0050CC00 (acclient.c:313961)
+    """
+    if (cell_id & 0xFFFF) < 0x100:
+        dx, dy, dz = get_block_offset(cell_id, tr.check_cell_id)
+        cache_global_sphere_offset(tr, dx, dy, dz)
+        tr.check_origin[0] = f32(tr.check_origin[0] + dx)
+        tr.check_origin[1] = f32(tr.check_origin[1] + dy)
+        tr.check_origin[2] = f32(tr.check_origin[2] + dz)
+    tr.check_cell_id = cell_id
+
+
+# -- COLLISIONINFO --------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def set_contact_plane(tr, nx, ny, nz, d, is_water):
+    """Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_contact_plane`.
+    Retail: COLLISIONINFO::set_contact_plane @ 0x00509D80 (acclient.c:311580)
+    """
+    tr.contact_plane_valid = True
+    tr.contact_n[0] = nx
+    tr.contact_n[1] = ny
+    tr.contact_n[2] = nz
+    tr.contact_d = d
+    tr.contact_plane_is_water = is_water
+
+
+@njit(cache=True)
+def set_collision_normal(tr, nx, ny, nz):
+    """Store the normal normalised (zero when shorter than EPSILON; valid either way).
+
+    Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_collision_normal`.
+    Retail: COLLISIONINFO::set_collision_normal @ 0x0050A000 (acclient.c:311725)
+    """
+    tr.collision_normal_valid = True
+    small, n = v_normalize_check_small((f32(nx), f32(ny), f32(nz)))
+    if small:
+        n = (0.0, 0.0, 0.0)
+    tr.collision_normal[0], tr.collision_normal[1], tr.collision_normal[2] = n
+
+
+@njit(cache=True)
+def set_sliding_normal(tr, nx, ny):
+    """Store the horizontal part of a normal, normalised (zero when too short).
+
+    Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_sliding_normal`.
+    Retail: COLLISIONINFO::set_sliding_normal @ 0x0050A060 (acclient.c:311743)
+    """
+    tr.sliding_normal_valid = True
+    small, n = v_normalize_check_small((f32(nx), f32(ny), 0.0))
+    if small:
+        n = (0.0, 0.0, 0.0)
+    tr.sliding_normal[0], tr.sliding_normal[1], tr.sliding_normal[2] = n
+
+
+@njit(cache=True)
+def collision_info_init(tr):
+    """Port of :meth:`acphys.transition.collision_info.CollisionInfo.init`.
+    Retail: COLLISIONINFO::init @ 0x00509D60 (acclient.c:311566)
+    """
+    tr.last_known_contact_plane_valid = False
+    tr.contact_plane_valid = False
+    tr.sliding_normal_valid = False
+    tr.collision_normal_valid = False
+    tr.collided_with_environment = False
+    tr.contact_plane_cell_id = 0
+    tr.frames_stationary_fall = 0
+
+
+# -- the transition's set-up ------------------------------------------------------------------
+
+
+@njit(cache=True)
+def transition_init(tr):
+    """Clear the object, the path's per-sweep fields, the collision record and the cell array.
+
+    Port of :meth:`acphys.transition.transition.Transition.init` (with ``SpherePath.init``).
+    Retail: CTransition::init @ 0x00509DD0 (acclient.c:311595)
+    """
+    tr.oi_body = -1
+    tr.oi_state = 0
+    tr.num_sphere = 0
+    tr.begin_cell = -1
+    tr.curr_cell = -1
+    tr.check_cell = -1
+    tr.insert_type = IT_TRANSITION
+    tr.step_down = False
+    tr.step_up = False
+    tr.collide = False
+    tr.hits_interior_cell = False
+    tr.backup_cell = -1
+    tr.walkable_allowance = 0.0
+    tr.walkable = False
+    tr.check_walkable = False
+    tr.cell_array_valid = False
+    tr.neg_poly_hit = False
+    collision_info_init(tr)
+    cell_array_clear(tr)
+
+
+# -- OBJECTINFO -------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def kill_velocity(bodies, tr):
+    """Zero the moving body's velocity (``CPhysicsObj::set_velocity(0)``: it is already no more
+    than 50 m/s, marks ``jumped_this_frame`` when it changes, and keeps the body active).
+
+    Port of :meth:`acphys.transition.object_info.ObjectInfo.kill_velocity`.
+    Retail: OBJECTINFO::kill_velocity @ 0x0050CFE0 (acclient.c:314147)
+    """
+    b = bodies[tr.oi_body]
+    v = b.velocity
+    if abs(v[0]) > EPSILON or abs(v[1]) > EPSILON or abs(v[2]) > EPSILON:
+        v[0] = 0.0
+        v[1] = 0.0
+        v[2] = 0.0
+        b.jumped_this_frame = True
+
+
+@njit(cache=True)
+def x87_divide(numerator, denominator):
+    """Port of :func:`acphys.transition.object_info.x87_divide`: ±inf or NaN instead of an error."""
+    if denominator != 0.0:
+        return numerator / denominator
+    if numerator == 0.0 or math.isnan(numerator):
+        return math.nan
+    return math.copysign(math.inf, numerator) * math.copysign(1.0, denominator)
+
+
+@njit(cache=True)
+def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_depth, land_cell_id):
+    """Rest sphere 0 (centre ``(cx, cy, cz)``, cell-local) on a terrain plane lowered by the water.
+
+    Port of :meth:`acphys.transition.object_info.ObjectInfo.validate_walkable` (not a viewer).
+    Retail: OBJECTINFO::validate_walkable @ 0x0050D010 (acclient.c:314160)
+    """
+    state = tr.oi_state
+    dist = cy * ny + (cz - radius) * nz + cx * nx + d + f32(water_depth)
+    contact = tr.step_down or not state & OI_ON_WALKABLE or nz >= FLOOR_Z
+    if dist >= -EPSILON:
+        if dist > EPSILON:
+            return OK
+        if contact:
+            set_contact_plane(tr, nx, ny, nz, d, is_water)
+            tr.contact_plane_cell_id = land_cell_id
+        result = OK
+    else:
+        if tr.check_walkable:
+            return COLLIDED
+        depth = f32(x87_divide(dist, nz))
+        result = OK
+        if contact:
+            set_contact_plane(tr, nx, ny, nz, d, is_water)
+            tr.contact_plane_cell_id = land_cell_id
+            if tr.step_down:
+                scale = x87_divide(-1.0, tr.step_down_amt * tr.walk_interp)
+                interp = (1.0 - scale * depth) * tr.walk_interp
+                if interp >= tr.walk_interp or interp < -0.1:
+                    return COLLIDED
+                tr.walk_interp = f32(interp)
+            add_offset_to_check_pos(tr, 0.0, 0.0, f32(-depth))
+            result = ADJUSTED
+    if not state & OI_CONTACT and not tr.step_down:
+        set_collision_normal(tr, nx, ny, nz)
+        tr.collided_with_environment = True
+    return result
+
+
+# -- what a cell holds ------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def find_env_collisions(w, tr, k):
+    """Collide sphere 0 with the terrain triangle of cell ``k`` under the low point.
+
+    Entry restrictions (a cell with one is ``uncovered``) and the all-water stop come first; a
+    partly wet cell's water depth is the reference path's.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.find_env_collisions`.
+    Retail: CLandCell::find_env_collisions @ 0x00532F20 (acclient.c:354991)
+    """
+    bodies, cells = w[0], w[1]
+    cell = cells[k]
+    ox, oy, oz = get_block_offset(tr.check_cell_id, cell.cell_id)
+    px = f32(tr.global_low_point[0] - ox)
+    py = f32(tr.global_low_point[1] - oy)
+    poly = find_terrain_poly(cells, k, px, py)
+    if poly < 0:
+        return OK
+    if cell.block_water_type == WT_ENTIRELY_WATER and not bodies[tr.oi_body].state & PS_MISSILE:
+        return COLLIDED
+    if cell.water_type == WT_PARTIALLY_WATER:
+        return BAIL
+    water_depth = ENTIRELY_WATER_DEPTH if cell.water_type == WT_ENTIRELY_WATER else 0.0
+    cx = f32(tr.global_sphere[0, 0] - ox)
+    cy = f32(tr.global_sphere[0, 1] - oy)
+    cz = f32(tr.global_sphere[0, 2] - oz)
+    plane = cell.plane[poly]
+    return validate_walkable(
+        tr,
+        cx,
+        cy,
+        cz,
+        tr.global_sphere[0, 3],
+        plane[0],
+        plane[1],
+        plane[2],
+        plane[3],
+        cell.water_type != WT_NOT_WATER,
+        water_depth,
+        cell.cell_id,
+    )
+
+
+@njit(cache=True)
+def out_of_reach(bodies, tr, j):
+    """Whether every moving sphere at ``check_pos`` misses every sphere of body ``j`` by more than
+    ``REACH_MARGIN`` (the reference's shortcut past ``intersects_sphere``).
+
+    Port of :meth:`acphys.body.reports.CollisionReports.out_of_reach`.
+    """
+    other = bodies[j]
+    m = other.m
+    ox, oy, oz = other.origin[0], other.origin[1], other.origin[2]
+    if (tr.check_cell_id >> 16) != (other.cell_id >> 16):
+        bx, by, bz = get_block_offset(tr.check_cell_id, other.cell_id)
+        ox, oy, oz = ox + bx, oy + by, oz + bz
+    scale = other.scale
+    for s in range(other.num_sphere):
+        cx, cy, cz = other.sphere[s, 0] * scale, other.sphere[s, 1] * scale, other.sphere[s, 2] * scale
+        x = m[6] * cz + m[0] * cx + m[3] * cy + ox
+        y = m[7] * cz + m[1] * cx + m[4] * cy + oy
+        z = m[8] * cz + m[2] * cx + m[5] * cy + oz
+        radius = other.sphere[s, 3] * scale + REACH_MARGIN
+        for t in range(tr.num_sphere):
+            dx = tr.global_sphere[t, 0] - x
+            dy = tr.global_sphere[t, 1] - y
+            dz = tr.global_sphere[t, 2] - z
+            limit = radius + tr.global_sphere[t, 3]
+            if not dx * dx + dy * dy + dz * dz > limit * limit:
+                return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def collides_with_sphere(dx, dy, dz, radsum):
+    """Port of :meth:`acphys.geometry.sphere.Sphere.collides_with_sphere` (touching hits).
+    Retail: CSphere::collides_with_sphere @ 0x005369E0 (acclient.c:358508)
+    """
+    return dx * dx + dy * dy + dz * dz <= radsum * radsum
+
+
+@njit(cache=True)
+def sphere_answers_ok(bodies, tr, j, s, is_creature):
+    """Whether ``CSphere::intersects_sphere`` of body ``j``'s sphere ``s`` (placed at its position
+    and scale, in ``check_pos``'s block) answers OK without touching anything; False when it would
+    collide, step or slide (the reference path then takes the step).
+
+    Port of the no-contact branches of :meth:`acphys.geometry.sphere.Sphere.intersects_sphere_placed`
+    and :meth:`~acphys.geometry.sphere.Sphere.intersects_sphere`.
+    Retail: CSphere::intersects_sphere @ 0x00537FD0 (acclient.c:359389), CSphere::intersects_sphere
+    @ 0x00537A80 (acclient.c:359156)
+    """
+    other = bodies[j]
+    scale = other.scale
+    vx = f32(other.sphere[s, 0] * scale)
+    vy = f32(other.sphere[s, 1] * scale)
+    vz = f32(other.sphere[s, 2] * scale)
+    m, o = other.m, other.origin
+    gx = f32(m[3] * vy + m[0] * vx + m[6] * vz + o[0])
+    gy = f32(m[4] * vy + m[1] * vx + m[7] * vz + o[1])
+    gz = f32(m[5] * vy + m[2] * vx + m[8] * vz + o[2])
+    bx, by, bz = get_block_offset(tr.check_cell_id, other.cell_id)
+    cx, cy, cz = f32(bx + gx), f32(by + gy), f32(bz + gz)
+    radius = f32(scale * other.sphere[s, 3])
+    dx = f32(tr.global_sphere[0, 0] - cx)
+    dy = f32(tr.global_sphere[0, 1] - cy)
+    dz = f32(tr.global_sphere[0, 2] - cz)
+    radsum = f32(radius + tr.global_sphere[0, 3] - EPSILON)
+    second = tr.num_sphere > 1
+    if second:
+        d2x = f32(tr.global_sphere[1, 0] - cx)
+        d2y = f32(tr.global_sphere[1, 1] - cy)
+        d2z = f32(tr.global_sphere[1, 2] - cz)
+        second = collides_with_sphere(d2x, d2y, d2z, radsum)
+    if tr.insert_type == IT_PLACEMENT:
+        return not (radsum * radsum >= dy * dy + dx * dx + dz * dz or second)
+    if tr.step_down:
+        if is_creature:
+            return True
+        hx, hy = f32(dx * dx), f32(dy * dy)
+        return radsum * radsum < dz * dz + hx + hy and not second
+    return not (collides_with_sphere(dx, dy, dz, radsum) or second)
+
+
+@njit(cache=True)
+def body_find_obj_collisions(w, tr, j):
+    """Body ``j``'s answer to the sweep, when it is OK and changes nothing; else BAIL.
+
+    Port of :meth:`acphys.body.reports.CollisionReports.find_obj_collisions` for a body of spheres
+    with no weenie (others bail: ``collider`` is False).
+    Retail: CPhysicsObj::FindObjCollisions @ 0x0050F050 (acclient.c:316158)
+    """
+    bodies = w[0]
+    other = bodies[j]
+    state = other.state
+    if state & PS_ETHEREAL and state & PS_IGNORE_COLLISIONS:
+        return OK
+    if not other.collider:
+        return BAIL
+    mover_ethereal = bodies[tr.oi_body].state & PS_ETHEREAL
+    ethereal = state & PS_ETHEREAL or (mover_ethereal and not state & PS_STATIC)
+    if ethereal and tr.step_down:
+        return OK
+    if ethereal:
+        return BAIL  # an ethereal obstruction is reported through the collision objects
+    if state & PS_MISSILE:  # OBJECTINFO::missile_ignore: a missile obstacle is passed through
+        return OK
+    if not tr.step_down and out_of_reach(bodies, tr, j):
+        return OK
+    for s in range(other.num_sphere):
+        if not sphere_answers_ok(bodies, tr, j, s, False):
+            return BAIL
+    return OK
+
+
+@njit(cache=True)
+def find_obj_collisions(w, tr, k):
+    """Ask each shadow of cell ``k``, in list order, to collide with the sweep.
+
+    Port of :meth:`acphys.world.obj_cell.ObjCell.find_obj_collisions`.
+    Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
+    """
+    if tr.insert_type == IT_INITIAL_PLACEMENT:
+        return OK
+    bodies, cells, shadow_pool = w[0], w[1], w[3]
+    cell = cells[k]
+    start = cell.shadow_start
+    for i in range(cell.num_shadows):
+        entry = shadow_pool[start + i]
+        if entry < 0:
+            return BAIL  # a static object's shapes are the reference's
+        if entry == tr.oi_body or bodies[entry].has_parent:
+            continue
+        result = body_find_obj_collisions(w, tr, entry)
+        if result != OK:
+            return result
+    return OK
+
+
+@njit(cache=True)
+def find_collisions(w, tr, k):
+    """Terrain, then the building (a cell with one is uncovered), then the shadowed objects.
+
+    Port of :meth:`acphys.world.land_cell.LandCell.find_collisions`.
+    Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
+    """
+    if w[1][k].uncovered:
+        return BAIL
+    result = find_env_collisions(w, tr, k)
+    if result == OK:
+        result = find_obj_collisions(w, tr, k)
+    return result
+
+
+@njit(cache=True)
+def insert_into_cell(w, tr, k, attempts):
+    """Collide with everything in cell ``k`` until OK or COLLIDED, at most ``attempts`` times.
+
+    Port of :meth:`acphys.transition.transition.Transition.insert_into_cell`.
+    Retail: CTransition::insert_into_cell @ 0x00509E70 (acclient.c:311631)
+    """
+    if k < 0:
+        return COLLIDED
+    ts = OK
+    for _ in range(attempts):
+        ts = find_collisions(w, tr, k)
+        if ts in (OK, COLLIDED, BAIL):
+            return ts
+        if ts == SLID:
+            tr.contact_plane_valid = False
+            tr.contact_plane_is_water = False
+    return ts
+
+
+@njit(cache=True)
+def find_cell_list(w, tr, want_cell):
+    """Fill the cell array with the land cells the global spheres touch at ``check_pos``; with
+    ``want_cell``, also the cell holding sphere 0's centre (-1 for none, -2 to bail).
+
+    Port of :meth:`acphys.world.obj_cell.ObjCell.find_cell_list` for an outdoor ``check_pos``
+    (land cells have no transit cells of their own beyond ``add_all_outside_cells``; a cell with
+    a building is uncovered).
+    Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)
+    """
+    cells, landblock_index = w[1], w[2]
+    cell_array_clear(tr)
+    cell_id = tr.check_cell_id
+    if (cell_id & 0xFFFF) >= 0x100:
+        return -2
+    if not add_all_outside_cells(tr, landblock_index, cell_id):
+        return -2
+    for i in range(tr.num_cells):
+        k = tr.cells[i]
+        if k < 0 or cells[k].uncovered:
+            return -2
+    if cell_index(landblock_index, cell_id) < 0:
+        return -2
+    curr = -1
+    if want_cell:
+        for i in range(tr.num_cells):
+            k = tr.cells[i]
+            ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
+            px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
+            if point_in_cell(cells, k, px, py):
+                curr = k
+    return curr
+
+
+@njit(cache=True)
+def check_other_cells(w, tr, curr_cell):
+    """Collide with every other cell the spheres reach, then re-home ``check_pos``.
+
+    Port of :meth:`acphys.transition.transition.Transition.check_other_cells`; the kernel's cells
+    collide without stepping, so the array does not change under the walk.
+    Retail: CTransition::check_other_cells @ 0x0050AE50 (acclient.c:312380)
+    """
+    ts = OK
+    tr.cell_array_valid = True
+    tr.hits_interior_cell = False
+    new_cell = find_cell_list(w, tr, True)
+    if new_cell == -2:
+        return BAIL
+    index = 0
+    while index < tr.num_cells:
+        k = tr.cells[index]
+        index += 1
+        if k == curr_cell:
+            continue
+        ts = find_collisions(w, tr, k)
+        if ts == BAIL:
+            return ts
+        if ts == SLID:
+            tr.contact_plane_valid = False
+            tr.contact_plane_is_water = False
+            return ts
+        if ts in (COLLIDED, ADJUSTED):
+            return ts
+    tr.check_cell = new_cell
+    if new_cell >= 0:
+        adjust_check_pos(tr, w[1][new_cell].cell_id)
+        return ts
+    if tr.step_down:
+        return COLLIDED
+    return BAIL  # no cell holds sphere 0's centre: a candidate leaving the known cells is the reference's
+
+
+@njit(cache=True)
+def calc_num_steps(tr):
+    """``(offset, offset_per_step, num_steps)`` for the path (not a viewer).
+
+    Port of :meth:`acphys.transition.transition.Transition.calc_num_steps`.
+    Retail: CTransition::calc_num_steps @ 0x0050A0B0 (acclient.c:311763)
+    """
+    offset = position_get_offset(
+        tr.begin_cell_id,
+        (tr.begin_origin[0], tr.begin_origin[1], tr.begin_origin[2]),
+        tr.end_cell_id,
+        (tr.end_origin[0], tr.end_origin[1], tr.end_origin[2]),
+    )
+    radius = tr.local_sphere[0, 3]
+    dist = v_length(offset)
+    steps = dist / (1.0 * radius)
+    if steps > 1.0:
+        num_steps = math.ceil(steps)
+        inv = 1.0 / num_steps
+        return offset, (f32(offset[0] * inv), f32(offset[1] * inv), f32(offset[2] * inv)), num_steps
+    if offset[0] != 0.0 or offset[1] != 0.0 or offset[2] != 0.0:
+        return offset, offset, 1
+    return offset, (0.0, 0.0, 0.0), 0
+
+
+@njit(cache=True)
+def snap_to_plane(nx, ny, nz, d, x, y, z):
+    """The offset with the z that keeps it in the plane (unchanged when ``|N.z| <= EPSILON``).
+
+    Port of :meth:`acphys.geometry.plane.Plane.snap_to_plane`.
+    Retail: Plane::snap_to_plane @ 0x00509C50 (acclient.c:311526)
+    """
+    if abs(nz) > EPSILON:
+        inv = 1.0 / nz
+        return (x, y, f32(-(y * ny + x * nx + nz * 0.0 + d) * inv - inv * -d))
+    return (x, y, z)
+
+
+@njit(cache=True)
+def adjust_offset(tr, x, y, z):
+    """Bend one step's offset by the sliding normal and the contact plane.
+
+    Port of :meth:`acphys.transition.transition.Transition.adjust_offset`.
+    Retail: CTransition::adjust_offset @ 0x0050A370 (acclient.c:311863)
+    """
+    new = (x, y, z)
+    sx, sy, sz = tr.sliding_normal[0], tr.sliding_normal[1], tr.sliding_normal[2]
+    slide = False
+    if tr.sliding_normal_valid:
+        if z * sz + y * sy + x * sx < 0.0:
+            slide = True
+        else:
+            tr.sliding_normal_valid = False
+    if tr.contact_plane_valid:
+        nx, ny, nz = tr.contact_n[0], tr.contact_n[1], tr.contact_n[2]
+        d = tr.contact_d
+        into_plane = f32(z * nz + y * ny + x * nx)
+        if slide:
+            small, line = v_normalize_check_small(
+                (f32(sz * ny - sy * nz), f32(sx * nz - sz * nx), f32(sy * nx - sx * ny))
+            )
+            if small:
+                new = (0.0, 0.0, 0.0)
+            else:
+                along = line[2] * z + line[1] * y + line[0] * x
+                new = (f32(line[0] * along), f32(line[1] * along), f32(line[2] * along))
+        elif into_plane <= 0.0:
+            new = (f32(x - into_plane * nx), f32(y - into_plane * ny), f32(z - f32(into_plane * nz)))
+        else:
+            new = snap_to_plane(nx, ny, nz, d, x, y, z)
+        if not tr.contact_plane_is_water and tr.contact_plane_cell_id:
+            bx, by, bz = get_block_offset(tr.check_cell_id, tr.contact_plane_cell_id)
+            cx, cy, cz = tr.global_sphere[0, 0], tr.global_sphere[0, 1], tr.global_sphere[0, 2]
+            radius = tr.global_sphere[0, 3]
+            dist = (cz - bz) * nz + (cy - by) * ny + (cx - bx) * nx + d
+            if dist < radius - EPSILON:
+                lift = x87_divide(radius - dist, nz)
+                if radius > abs(lift):
+                    add_offset_to_check_pos(tr, 0.0, 0.0, f32(lift))
+    elif slide:
+        along = x * sx + z * sz + y * sy
+        new = (f32(x - along * sx), f32(y - f32(along * sy)), f32(z - f32(along * sz)))
+    return new
+
+
+# -- steps, slides and validation ----------------------------------------------------------
+
+
+@njit(cache=True)
+def cliff_slide(tr, nx, ny, nz):
+    """Slide along the crease between the too-steep contact plane and the last known one.
+
+    Port of :meth:`acphys.transition.transition.Transition.cliff_slide`.
+    Retail: CTransition::cliff_slide @ 0x0050A6D0 (acclient.c:312004)
+    """
+    lx, ly, lz = tr.last_known_contact_n[0], tr.last_known_contact_n[1], tr.last_known_contact_n[2]
+    cx = ny * lz - nz * ly
+    cy = lx * nz - lz * nx
+    cz = (nx * ly - ny * lx) * 0.0
+    small, normal = v_normalize_check_small((f32(cz - cy), f32(cx - cz), f32(cy * 0.0 - cx * 0.0)))
+    if small:
+        return OK
+    bx, by, bz = get_block_offset(tr.curr_cell_id, tr.check_cell_id)
+    step_x = tr.global_sphere[0, 0] - tr.global_curr_center[0, 0]
+    step_y = tr.global_sphere[0, 1] - tr.global_curr_center[0, 1]
+    step_z = f32(tr.global_sphere[0, 2] - tr.global_curr_center[0, 2])
+    along_x = f32(bx + step_x)
+    along = (bz + step_z) * normal[2] + (by + step_y) * normal[1] + along_x * normal[0]
+    if along <= 0.0:
+        add_offset_to_check_pos(tr, f32(normal[0] * along), f32(normal[1] * along), f32(normal[2] * along))
+        set_collision_normal(tr, normal[0], normal[1], normal[2])
+    else:
+        add_offset_to_check_pos(
+            tr, f32(normal[0] * -along), f32(normal[1] * -along), f32(normal[2] * -along)
+        )
+        set_collision_normal(tr, -normal[0], -normal[1], -normal[2])
+    return ADJUSTED
+
+
+@njit(cache=True, inline="always")
+def step_down(w, tr, step_down_ht, z_val, deeper):
+    """Lower the candidate by ``step_down_ht`` and insert it: 1 when it lands on a contact plane
+    with normal z at least ``z_val`` and a placement re-insert there is OK, else 0 (or BAIL).
+
+    Port of :meth:`acphys.transition.transition.Transition.step_down` (the kernel records no
+    walkable polygon, so its ``check_walkable`` always finds ground).
+    Retail: CTransition::step_down @ 0x0050B2A0 (acclient.c:312628)
+    """
+    step_down_ht = f32(step_down_ht)
+    z_val = f32(z_val)
+    tr.neg_poly_hit = False
+    tr.step_down = True
+    tr.step_down_amt = step_down_ht
+    tr.walk_interp = 1.0
+    if not tr.step_up:
+        add_offset_to_check_pos(tr, 0.0, 0.0, -step_down_ht)
+    ts = deeper(w, tr, 5)
+    if ts == BAIL:
+        return BAIL
+    tr.step_down = False
+    if not (ts == OK and tr.contact_plane_valid and tr.contact_n[2] >= z_val):
+        return 0
+    if tr.oi_state & OI_EDGE_SLIDE and not tr.step_up and tr.walkable:
+        return BAIL  # check_walkable against a recorded walkable polygon
+    tr.backup = tr.insert_type
+    tr.insert_type = IT_PLACEMENT
+    ts = deeper(w, tr, 1)
+    if ts == BAIL:
+        return BAIL
+    tr.insert_type = tr.backup
+    return 1 if ts == OK else 0
+
+
+@njit(cache=True, inline="always")
+def edge_slide(w, tr, ts, step_down_ht, z_val, deeper):
+    """A body that found nothing to step down onto: ``(stop, ts)``.
+
+    Port of :meth:`acphys.transition.transition.Transition.edge_slide` (no walkable polygon is
+    ever recorded by the kernel, so the precipice slides are not reached).
+    Retail: CTransition::edge_slide @ 0x0050B3D0 (acclient.c:312684)
+    """
+    state = tr.oi_state
+    if not (state & OI_ON_WALKABLE and state & OI_EDGE_SLIDE):
+        tr.walkable = False
+        restore_check_pos(tr)
+        tr.contact_plane_valid = False
+        tr.contact_plane_is_water = False
+        tr.cell_array_valid = True
+        return True, OK
+    if tr.contact_plane_valid and tr.contact_n[2] < z_val:
+        tr.walkable = False
+        restore_check_pos(tr)
+        ts = cliff_slide(tr, tr.contact_n[0], tr.contact_n[1], tr.contact_n[2])
+        tr.contact_plane_valid = False
+        tr.contact_plane_is_water = False
+        return False, ts
+    if tr.walkable:
+        return True, BAIL
+    if tr.contact_plane_valid:
+        tr.walkable = False
+        restore_check_pos(tr)
+        tr.cell_array_valid = True
+        tr.contact_plane_valid = False
+        tr.contact_plane_is_water = False
+        return True, OK
+    add_offset_to_check_pos(
+        tr,
+        f32(tr.global_curr_center[0, 0] - tr.global_sphere[0, 0]),
+        f32(tr.global_curr_center[0, 1] - tr.global_sphere[0, 1]),
+        f32(tr.global_curr_center[0, 2] - tr.global_sphere[0, 2]),
+    )
+    if step_down(w, tr, step_down_ht, z_val, deeper) == BAIL:
+        return True, BAIL
+    tr.contact_plane_valid = False
+    tr.contact_plane_is_water = False
+    restore_check_pos(tr)
+    if tr.walkable:
+        return True, BAIL
+    tr.walkable = False
+    tr.cell_array_valid = True
+    return True, COLLIDED
+
+
+@njit(cache=True, inline="always")
+def transitional_insert_body(w, tr, attempts, deeper):
+    """Insert ``check_pos`` into its cell and the cells around, resolving what it meets.
+
+    Port of :meth:`acphys.transition.transition.Transition.transitional_insert` (a sweep over
+    terrain never sets ``collide`` or ``neg_poly_hit``: those come from shapes the kernel leaves
+    to the reference path).
+    Retail: CTransition::transitional_insert @ 0x0050B6F0 (acclient.c:312833)
+    """
+    if tr.check_cell < 0:
+        return OK
+    ts = INVALID
+    for _ in range(attempts):
+        ts = insert_into_cell(w, tr, tr.check_cell, attempts)
+        if ts == BAIL:
+            return BAIL
+        if ts == OK:
+            ts = check_other_cells(w, tr, tr.check_cell)
+            if ts == BAIL:
+                return BAIL
+            if ts != OK:
+                tr.neg_poly_hit = False
+            if ts == COLLIDED:
+                return ts
+        elif ts == SLID:
+            tr.contact_plane_valid = False
+            tr.contact_plane_is_water = False
+            tr.neg_poly_hit = False
+        elif ts == ADJUSTED:
+            tr.neg_poly_hit = False
+        elif ts == COLLIDED:
+            tr.neg_poly_hit = False
+            return ts
+        if ts != OK:
+            continue
+        if tr.collide or tr.neg_poly_hit:
+            return BAIL
+        if tr.contact_plane_valid:
+            return OK
+        state = tr.oi_state
+        if not state & OI_CONTACT or tr.step_down or tr.check_cell < 0 or not tr.oi_step_down:
+            return OK
+        step_down_ht = SMALL_STEP_DOWN_HEIGHT
+        z_val = LANDING_Z
+        if state & OI_ON_WALKABLE:
+            z_val = FLOOR_Z
+            step_down_ht = tr.oi_step_down_height
+        tr.walkable_allowance = z_val
+        save_check_pos(tr)
+        radius = tr.global_sphere[0, 3]
+        if tr.num_sphere < 2 and radius + radius < step_down_ht:
+            step_down_ht = f32(radius * 0.5)
+        if radius + radius >= step_down_ht:
+            stepped = step_down(w, tr, step_down_ht, z_val, deeper)
+        else:
+            step_down_ht = f32(step_down_ht * 0.5)
+            stepped = step_down(w, tr, step_down_ht, z_val, deeper)
+            if stepped == 0:
+                stepped = step_down(w, tr, step_down_ht, z_val, deeper)
+        if stepped == BAIL:
+            return BAIL
+        if stepped:
+            tr.walkable = False
+            return OK
+        done, ts = edge_slide(w, tr, ts, step_down_ht, z_val, deeper)
+        if done or ts == BAIL:
+            return ts
+    return ts
+
+
+@njit(cache=True)
+def _insert_too_deep(w, tr, attempts):
+    """Below the deepest compiled level: the reference path nests further."""
+    return BAIL
+
+
+@njit(cache=True)
+def _insert_level_5(w, tr, attempts):
+    return transitional_insert_body(w, tr, attempts, _insert_too_deep)
+
+
+@njit(cache=True)
+def _insert_level_4(w, tr, attempts):
+    return transitional_insert_body(w, tr, attempts, _insert_level_5)
+
+
+@njit(cache=True)
+def _insert_level_3(w, tr, attempts):
+    return transitional_insert_body(w, tr, attempts, _insert_level_4)
+
+
+@njit(cache=True)
+def _insert_level_2(w, tr, attempts):
+    return transitional_insert_body(w, tr, attempts, _insert_level_3)
+
+
+@njit(cache=True)
+def transitional_insert(w, tr, attempts):
+    """The outermost ``transitional_insert``; five nested levels follow it."""
+    return transitional_insert_body(w, tr, attempts, _insert_level_2)
+
+
+@njit(cache=True)
+def validate_transition(w, tr, ts):
+    """Accept or roll back one step; update the sliding normal, the stationary-fall counter and the
+    contact state.
+
+    Port of :meth:`acphys.transition.transition.Transition.validate_transition`.
+    Retail: CTransition::validate_transition @ 0x0050AA70 (acclient.c:312193)
+    """
+    bodies = w[0]
+    moved = True
+    unchanged = tr.check_cell_id == tr.curr_cell_id and frame_is_equal(
+        t3(tr.check_origin), t4(tr.check_q), t3(tr.curr_origin), t4(tr.curr_q)
+    )
+    if ts != OK or unchanged:
+        moved = False
+    if ts == OK:
+        tr.curr_cell_id = tr.check_cell_id
+        tr.curr_origin[:] = tr.check_origin
+        tr.curr_q[:] = tr.check_q
+        tr.curr_m[:] = tr.check_m
+        tr.curr_cell = tr.check_cell
+        cache_global_curr_center(tr)
+        set_check_pos_to_curr(tr)
+    elif COLLIDED <= ts <= SLID:
+        if tr.last_known_contact_plane_valid:
+            kill_velocity(bodies, tr)
+            n = tr.last_known_contact_n
+            cx, cy, cz = tr.global_curr_center[0, 0], tr.global_curr_center[0, 1], tr.global_curr_center[0, 2]
+            dist = cz * n[2] + cy * n[1] + cx * n[0] + tr.last_known_contact_d
+            if tr.global_sphere[0, 3] + EPSILON > abs(dist):
+                set_contact_plane(tr, n[0], n[1], n[2], tr.last_known_contact_d,
+                                  tr.last_known_contact_plane_is_water)
+                tr.contact_plane_cell_id = tr.last_known_contact_plane_cell_id
+                if tr.oi_state & OI_ON_WALKABLE:
+                    moved = True
+        if not tr.collision_normal_valid:
+            set_collision_normal(tr, 0.0, 0.0, 1.0)
+        set_check_pos_to_curr(tr)
+        tr.cell_array_valid = True
+        tr.hits_interior_cell = False
+        if find_cell_list(w, tr, False) == -2:
+            return BAIL
+        ts = OK
+    if tr.collision_normal_valid:
+        set_sliding_normal(tr, tr.collision_normal[0], tr.collision_normal[1])
+    if bodies[tr.oi_body].state & PS_GRAVITY:
+        if moved:
+            tr.frames_stationary_fall = 0
+        elif tr.frames_stationary_fall == 0:
+            tr.frames_stationary_fall = 1
+        elif tr.frames_stationary_fall == 1:
+            tr.frames_stationary_fall = 2
+        else:
+            tr.frames_stationary_fall = 3
+            cx, cy, cz = tr.global_sphere[0, 0], tr.global_sphere[0, 1], tr.global_sphere[0, 2]
+            height = (cy + cx) * 0.0 + cz
+            set_contact_plane(tr, 0.0, 0.0, 1.0, f32(tr.global_sphere[0, 3] - height), False)
+            tr.contact_plane_cell_id = tr.check_cell_id
+            if not tr.oi_state & OI_CONTACT:
+                set_collision_normal(tr, 0.0, 0.0, 1.0)
+                tr.collided_with_environment = True
+    tr.last_known_contact_plane_valid = tr.contact_plane_valid
+    if tr.contact_plane_valid:
+        tr.last_known_contact_n[:] = tr.contact_n
+        tr.last_known_contact_d = tr.contact_d
+        tr.last_known_contact_plane_cell_id = tr.contact_plane_cell_id
+        tr.last_known_contact_plane_is_water = tr.contact_plane_is_water
+        tr.oi_state |= OI_CONTACT
+        if tr.contact_n[2] >= FLOOR_Z:
+            tr.oi_state |= OI_ON_WALKABLE
+        else:
+            tr.oi_state &= ~OI_ON_WALKABLE
+    else:
+        tr.oi_state &= ~(OI_CONTACT | OI_ON_WALKABLE)
+    return ts
+
+
+@njit(cache=True)
+def find_transitional_position(w, tr):
+    """Sweep from ``curr_pos`` to ``end_pos`` in steps of at most sphere 0's radius: 1 when the last
+    step validated OK, 0 when not, BAIL when the reference path must sweep.
+
+    Port of :meth:`acphys.transition.transition.Transition.find_transitional_position` (not a
+    viewer).
+    Retail: CTransition::find_transitional_position @ 0x0050BDF0 (acclient.c:313170)
+    """
+    if tr.begin_cell < 0:
+        return 0
+    ts = OK
+    _, per_step, num_steps = calc_num_steps(tr)
+    free = tr.oi_state & OI_FREE_ROTATE
+    if free:
+        set_curr_rotation(tr, tr.end_q)
+    set_check_pos_to_curr(tr)
+    if num_steps <= 0:
+        if not free:
+            set_curr_rotation(tr, tr.end_q)
+        set_check_pos_to_curr(tr)
+        tr.cell_array_valid = True
+        tr.hits_interior_cell = False
+        if find_cell_list(w, tr, False) == -2:
+            return BAIL
+        return 1
+    for step in range(num_steps):
+        gx, gy, gz = adjust_offset(tr, per_step[0], per_step[1], per_step[2])
+        tr.global_offset[0], tr.global_offset[1], tr.global_offset[2] = gx, gy, gz
+        if gx * gx + gy * gy + gz * gz < EPSILON * EPSILON:
+            return 1 if step != 0 and ts == OK else 0
+        if not free:
+            q, m = frame_interpolate_rotation(
+                t3(tr.check_origin), t4(tr.check_q), t9(tr.check_m), t4(tr.begin_q), t4(tr.end_q),
+                (step + 1) / num_steps,
+            )
+            tr.check_q[:] = q
+            tr.check_m[:] = m
+        tr.sliding_normal_valid = False
+        tr.contact_plane_valid = False
+        tr.contact_plane_is_water = False
+        add_offset_to_check_pos(tr, gx, gy, gz)
+        inserted = transitional_insert(w, tr, 3)
+        if inserted == BAIL:
+            return BAIL
+        ts = validate_transition(w, tr, inserted)
+        if ts == BAIL:
+            return BAIL
+        if tr.frames_stationary_fall:
+            break
+        if tr.collision_normal_valid and tr.oi_state & OI_PATH_CLIPPED:
+            break
+    return 1 if ts == OK else 0
+
+
+@njit(cache=True)
+def set_curr_rotation(tr, new_q):
+    """``curr_pos.frame.set_rotate(new_q)`` (kept when the result is not a valid frame)."""
+    q, m = frame_set_rotate(t3(tr.curr_origin), t4(tr.curr_q), t9(tr.curr_m), t4(new_q))
+    tr.curr_q[:] = q
+    tr.curr_m[:] = m

@@ -1,0 +1,731 @@
+"""The kernel's ``CPhysics::UseTime``: each body's ``update_object`` over its record, in table order.
+
+Ports of :class:`acphys.physics_obj.PhysicsObj`'s tick (``update_object``,
+``update_object_internal``, ``update_position_internal``, ``update_physics_internal``,
+``calc_friction``, ``transition``, ``set_position_internal``, ``handle_all_collisions``) and of the
+shadow bookkeeping of :mod:`acphys.body.cells`, for the bodies :mod:`acphys.fast.coverage` lets the
+kernel step.
+
+A body's update is all or nothing. Before it starts, its record, the transition and the counters
+are saved and every change to the shadow pool is journalled; when anything hands the step back
+(``BAIL``: something only the reference path does), all of it is undone and
+:func:`run_bodies` returns that body's index for the engine to run on the reference path.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from acphys.constants import (
+    ACTIVITY_DISTANCE,
+    EPSILON,
+    FLOOR_Z,
+    GRAVITY,
+    HUGE_QUANTUM,
+    MAX_QUANTUM,
+    MAX_VELOCITY,
+    MIN_QUANTUM,
+    SMALL_VELOCITY,
+)
+from acphys.fast.kernels.cells import BAIL
+from acphys.fast.kernels.frame import (
+    f32,
+    frame_combine,
+    frame_grotate,
+    frame_is_valid,
+    frame_is_valid_except_for_heading,
+    frame_rotate,
+    position_get_offset,
+    v_length,
+    v_normalized,
+)
+from acphys.fast.kernels.sweep import (
+    cache_global_curr_center,
+    find_transitional_position,
+    set_sliding_normal,
+    t3,
+    t4,
+    t9,
+    transition_init,
+)
+from acphys.fast.layout import MAX_CELLS
+from acphys.flags import ObjectInfoState, PhysicsState, TransientState
+
+PS_STATIC = int(PhysicsState.STATIC)
+PS_REPORT_COLLISIONS = int(PhysicsState.REPORT_COLLISIONS)
+PS_MISSILE = int(PhysicsState.MISSILE)
+PS_ALIGN_PATH = int(PhysicsState.ALIGN_PATH)
+PS_PATH_CLIPPED = int(PhysicsState.PATH_CLIPPED)
+PS_GRAVITY = int(PhysicsState.GRAVITY)
+PS_EDGE_SLIDE = int(PhysicsState.EDGE_SLIDE)
+PS_SLEDDING = int(PhysicsState.SLEDDING)
+PS_FROZEN = int(PhysicsState.FROZEN)
+PS_INELASTIC = int(PhysicsState.INELASTIC)
+PS_HIDDEN = int(PhysicsState.HIDDEN)
+TS_CONTACT = int(TransientState.CONTACT)
+TS_ON_WALKABLE = int(TransientState.ON_WALKABLE)
+TS_SLIDING = int(TransientState.SLIDING)
+TS_WATER_CONTACT = int(TransientState.WATER_CONTACT)
+TS_STATIONARY_FALL = int(TransientState.STATIONARY_FALL)
+TS_STATIONARY_STOP = int(TransientState.STATIONARY_STOP)
+TS_STATIONARY_STUCK = int(TransientState.STATIONARY_STUCK)
+TS_ACTIVE = int(TransientState.ACTIVE)
+STATIONARY_MASK = TS_STATIONARY_FALL | TS_STATIONARY_STOP | TS_STATIONARY_STUCK
+OI_CONTACT = int(ObjectInfoState.CONTACT)
+OI_ON_WALKABLE = int(ObjectInfoState.ON_WALKABLE)
+OI_EDGE_SLIDE = int(ObjectInfoState.EDGE_SLIDE)
+OI_PATH_CLIPPED = int(ObjectInfoState.PATH_CLIPPED)
+
+# What run_bodies returns with the index it stopped at.
+DONE = 0  # every body from the start index on was updated
+FALLBACK = 1  # the body at the index must be updated on the reference path
+GROW = 2  # a cell's shadow list is full (counters[GROW_CELL]); grow it and call again from the index
+LOG_FULL = 3  # the trace log is full; write it out and call again from the index
+
+# Slots of the counters array.
+STEPS = 0  # body-steps the kernel took
+LOGGED = 1  # rows in the trace log
+MOVES = 2  # rows in the cell-move log
+JOURNAL = 3  # rows in the undo journal
+GROW_CELL = 4
+NUM_COUNTERS = 5
+
+# Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
+# omega[3], transient, contact normal[3], events.
+LOG_WIDTH = 25
+EVENT_HIT_GROUND = 1
+EVENT_LEAVE_GROUND = 2
+EVENT_COLLISION_ENVIRONMENT = 4
+#: The most steps one update takes: HUGE_QUANTUM / MAX_QUANTUM quanta (and a remainder).
+MAX_STEPS_PER_UPDATE = 11
+JOURNAL_ROWS = 4096
+
+# Journal row kinds: pool[a] was b; cells[a].num_shadows was b;
+# bodies[a // MAX_CELLS].shadow_slot[a % MAX_CELLS] was b.
+J_POOL = 0
+J_COUNT = 1
+J_SLOT = 2
+
+
+# -- the shadow pool, journalled ---------------------------------------------------------------
+
+
+@njit(cache=True)
+def _journal(journal, counters, kind, a, b):
+    n = counters[JOURNAL]
+    if n >= journal.shape[0]:
+        return False
+    journal[n, 0] = kind
+    journal[n, 1] = a
+    journal[n, 2] = b
+    counters[JOURNAL] = n + 1
+    return True
+
+
+@njit(cache=True)
+def _undo(bodies, cells, shadow_pool, journal, counters):
+    for n in range(counters[JOURNAL] - 1, -1, -1):
+        kind, a, b = journal[n, 0], journal[n, 1], journal[n, 2]
+        if kind == J_POOL:
+            shadow_pool[a] = b
+        elif kind == J_COUNT:
+            cells[a].num_shadows = b
+        else:
+            bodies[a // MAX_CELLS].shadow_slot[a % MAX_CELLS] = b
+    counters[JOURNAL] = 0
+
+
+@njit(cache=True)
+def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
+    """Take each of body ``i``'s shadows out of its cell (the cell's last entry takes its slot).
+
+    Port of :meth:`acphys.body.cells.CellMembership.remove_shadows_from_cells` and
+    :meth:`acphys.world.obj_cell.ObjCell.remove_shadow_object`.
+    Retail: CPhysicsObj::remove_shadows_from_cells @ 0x00511230 (acclient.c:318417)
+    """
+    b = bodies[i]
+    for s in range(b.num_shadow):
+        k = b.shadow_cell[s]
+        if k < 0:
+            continue
+        cell = cells[k]
+        index = b.shadow_slot[s]
+        last = cell.num_shadows - 1
+        start = cell.shadow_start
+        if not _journal(journal, counters, J_COUNT, k, cell.num_shadows):
+            return False
+        moved = shadow_pool[start + last]
+        if index != last:
+            if not _journal(journal, counters, J_POOL, start + index, shadow_pool[start + index]):
+                return False
+            shadow_pool[start + index] = moved
+            if moved >= 0:
+                other = bodies[moved]
+                for t in range(other.num_shadow):
+                    if other.shadow_cell[t] == k:
+                        slot = moved * MAX_CELLS + t
+                        if not _journal(journal, counters, J_SLOT, slot, other.shadow_slot[t]):
+                            return False
+                        other.shadow_slot[t] = index
+        cell.num_shadows = last
+        cell.dirty = True
+    b.num_shadow = 0
+    return True
+
+
+@njit(cache=True)
+def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
+    """One shadow per cell of the transition's cell array, appended to that cell's list. Returns
+    -1 when done, else the index of a cell whose list is full.
+
+    Port of :meth:`acphys.body.cells.CellMembership.add_shadows_to_cells` and
+    :meth:`acphys.world.obj_cell.ObjCell.add_shadow_object`.
+    Retail: CPhysicsObj::add_shadows_to_cells @ 0x00514AE0 (acclient.c:321977)
+    """
+    b = bodies[i]
+    for s in range(tr.num_cells):
+        k = tr.cells[s]
+        b.shadow_cell[s] = k
+        b.shadow_cell_id[s] = tr.cell_ids[s]
+        b.shadow_slot[s] = -1
+        if k < 0:
+            continue
+        cell = cells[k]
+        count = cell.num_shadows
+        if count >= cell.shadow_capacity:
+            return k
+        if not _journal(journal, counters, J_COUNT, k, count):
+            return -2
+        at = cell.shadow_start + count
+        if not _journal(journal, counters, J_POOL, at, shadow_pool[at]):
+            return -2
+        shadow_pool[at] = i
+        cell.num_shadows = count + 1
+        cell.dirty = True
+        b.shadow_slot[s] = count
+    b.num_shadow = tr.num_cells
+    b.shadows_moved = True
+    return -1
+
+
+# -- the body's state -----------------------------------------------------------------------
+
+
+@njit(cache=True)
+def calc_acceleration(b):
+    """Port of :meth:`acphys.physics_obj.PhysicsObj.calc_acceleration`.
+    Retail: CPhysicsObj::calc_acceleration @ 0x00510950 (acclient.c:317786)
+    """
+    ts = b.transient
+    if ts & TS_CONTACT and ts & TS_ON_WALKABLE and not b.state & PS_SLEDDING:
+        b.acceleration[:] = 0.0
+        b.omega[:] = 0.0
+    elif b.state & PS_GRAVITY:
+        b.acceleration[0] = 0.0
+        b.acceleration[1] = 0.0
+        b.acceleration[2] = GRAVITY
+    else:
+        b.acceleration[:] = 0.0
+
+
+@njit(cache=True)
+def set_on_walkable(b, on, events):
+    """Set ON_WALKABLE, note landing and leaving, recompute the acceleration; BAIL when a movement
+    manager would have to hear of it (its interpreter replays motions).
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.set_on_walkable`.
+    Retail: CPhysicsObj::set_on_walkable @ 0x00511310 (acclient.c:318501)
+    """
+    was = b.transient & TS_ON_WALKABLE
+    if on:
+        b.transient |= TS_ON_WALKABLE
+    else:
+        b.transient &= ~TS_ON_WALKABLE
+    if was and not on:
+        if b.has_movement_manager:
+            return BAIL, events
+        events |= EVENT_LEAVE_GROUND
+    elif not was and on:
+        if b.has_movement_manager:
+            return BAIL, events
+        events |= EVENT_HIT_GROUND
+    calc_acceleration(b)
+    return 0, events
+
+
+@njit(cache=True)
+def set_frame(b, origin, q, m):
+    """Make the frame the body's (a sound origin with a NaN quaternion commits an all-zero one).
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.set_frame` (the parts follow when the record is
+    written back; a covered body holds nothing).
+    Retail: CPhysicsObj::set_frame @ 0x00514090 (acclient.c:321327)
+    """
+    if not frame_is_valid(origin, q) and frame_is_valid_except_for_heading(origin, q):
+        q = (0.0, 0.0, 0.0, 0.0)
+    b.origin[0], b.origin[1], b.origin[2] = origin
+    b.q[0], b.q[1], b.q[2], b.q[3] = q
+    b.m[:] = m
+
+
+# -- the candidate frame ------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def calc_friction(b, quantum, velocity_mag2):
+    """Port of :meth:`acphys.physics_obj.PhysicsObj.calc_friction` (not a sledding body).
+    Retail: CPhysicsObj::calc_friction @ 0x0050EE70 (acclient.c:316090)
+    """
+    if not b.transient & TS_ON_WALKABLE:
+        return
+    n = b.contact_n
+    v = b.velocity
+    normal_speed = v[2] * n[2] + v[1] * n[1] + v[0] * n[0]
+    if normal_speed >= 0.25:
+        return
+    dz = f32(normal_speed * n[2])
+    v[0], v[1], v[2] = f32(v[0] - normal_speed * n[0]), f32(v[1] - normal_speed * n[1]), f32(v[2] - dz)
+    factor = math.pow(1.0 - b.friction, quantum)
+    v[0], v[1], v[2] = f32(factor * v[0]), f32(factor * v[1]), f32(factor * v[2])
+
+
+@njit(cache=True)
+def update_physics_internal(b, quantum, origin, q, m):
+    """Euler-integrate velocity, acceleration and omega into the candidate; returns it.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.update_physics_internal`.
+    Retail: CPhysicsObj::UpdatePhysicsInternal @ 0x00510700 (acclient.c:317700)
+    """
+    v = b.velocity
+    a = b.acceleration
+    velocity_mag2 = f32(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    if velocity_mag2 <= 0.0:
+        if not b.has_movement_manager and b.transient & TS_ON_WALKABLE:
+            b.transient &= ~TS_ACTIVE
+    else:
+        if velocity_mag2 > MAX_VELOCITY * MAX_VELOCITY:
+            n = v_normalized((v[0], v[1], v[2]))
+            v[0], v[1], v[2] = f32(n[0] * MAX_VELOCITY), f32(n[1] * MAX_VELOCITY), f32(n[2] * MAX_VELOCITY)
+            velocity_mag2 = MAX_VELOCITY * MAX_VELOCITY
+        calc_friction(b, quantum, velocity_mag2)
+        if velocity_mag2 - SMALL_VELOCITY * SMALL_VELOCITY < EPSILON:
+            v[:] = 0.0
+        ax_half_dt = f32(a[0] * 0.5 * quantum)
+        ay_term = f32(a[1] * 0.5 * quantum * quantum)
+        vz_term = f32(quantum * v[2])
+        half_az = f32(a[2] * 0.5)
+        move_x = f32(quantum * v[0] + f32(ax_half_dt * quantum))
+        move_z = f32(vz_term + half_az * quantum * quantum)
+        origin = (
+            f32(move_x + origin[0]),
+            f32(quantum * v[1] + ay_term + origin[1]),
+            f32(move_z + origin[2]),
+        )
+    dvz = f32(quantum * a[2])
+    v[0], v[1], v[2] = f32(quantum * a[0] + v[0]), f32(quantum * a[1] + v[1]), f32(dvz + v[2])
+    w = (f32(b.omega[0] * quantum), f32(b.omega[1] * quantum), f32(b.omega[2] * quantum))
+    q, m = frame_grotate(origin, q, m, w)
+    return origin, q, m
+
+
+@njit(cache=True)
+def update_position_internal(b, quantum):
+    """The candidate frame: root motion, scaled on walkable ground, combined onto the body's frame,
+    then integrated. (A covered body plays no animation: the sequence's velocity and omega apply
+    for the whole quantum, ``CSequence::apply_physics``.)
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.update_position_internal`.
+    Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988)
+    """
+    identity_m = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    o = (0.0, 0.0, 0.0)
+    oq = (1.0, 0.0, 0.0, 0.0)
+    om = identity_m
+    if not b.state & PS_HIDDEN:
+        step = abs(quantum)
+        sv = b.seq_velocity
+        dy, dz = f32(step * sv[1]), f32(step * sv[2])
+        o = (f32(step * sv[0] + o[0]), f32(dy + o[1]), f32(dz + o[2]))
+        w = b.seq_omega
+        if w[0] != 0.0 or w[1] != 0.0 or w[2] != 0.0:
+            oq, om = frame_rotate(o, oq, om, (f32(step * w[0]), f32(step * w[1]), f32(step * w[2])))
+        factor = b.scale if b.transient & TS_ON_WALKABLE else 0.0
+        o = (f32(o[0] * factor), f32(o[1] * factor), f32(o[2] * factor))
+    origin, q, m = frame_combine(
+        (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), identity_m, t3(b.origin), t4(b.q), t9(b.m), o, oq
+    )
+    if not b.state & PS_HIDDEN:
+        origin, q, m = update_physics_internal(b, quantum, origin, q, m)
+    return origin, q, m
+
+
+# -- the sweep and the commit ----------------------------------------------------------------------
+
+
+@njit(cache=True)
+def transition(w, tr, i, origin, q, m):
+    """Sweep body ``i`` from where it is to the candidate: 1 found, 0 not, BAIL.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.transition` with ``get_object_info`` and
+    ``OBJECTINFO::init`` (no weenie: a covered body has none).
+    Retail: CPhysicsObj::transition @ 0x00512DC0 (acclient.c:320060), CPhysicsObj::get_object_info
+    @ 0x00511CC0 (acclient.c:319073), OBJECTINFO::init @ 0x0050CF30 (acclient.c:314117)
+    """
+    bodies = w[0]
+    b = bodies[i]
+    transition_init(tr)
+    state = OI_EDGE_SLIDE if b.state & PS_EDGE_SLIDE else 0
+    ts = b.transient
+    if ts & TS_CONTACT:
+        is_water = bool(ts & TS_WATER_CONTACT)
+        v, n = b.velocity, b.contact_n
+        tr.last_known_contact_plane_valid = True
+        tr.last_known_contact_n[:] = b.contact_n
+        tr.last_known_contact_d = b.contact_d
+        tr.last_known_contact_plane_is_water = is_water
+        if not v[2] * n[2] + v[1] * n[1] + v[0] * n[0] > EPSILON:  # check_contact(True)
+            tr.last_known_contact_plane_cell_id = b.contact_cell_id
+            tr.contact_plane_valid = True
+            tr.contact_n[:] = b.contact_n
+            tr.contact_d = b.contact_d
+            tr.contact_plane_is_water = is_water
+            state |= OI_CONTACT
+            if ts & TS_ON_WALKABLE:
+                state |= OI_ON_WALKABLE
+        tr.contact_plane_cell_id = b.contact_cell_id
+    if ts & TS_SLIDING:
+        set_sliding_normal(tr, b.sliding_normal[0], b.sliding_normal[1])
+    if b.state & PS_MISSILE:
+        state |= OI_PATH_CLIPPED
+    tr.oi_body = i
+    tr.oi_state = state
+    scale = b.scale
+    tr.oi_scale = scale
+    tr.oi_step_up_height = f32(b.step_up_height * scale)
+    tr.oi_step_down_height = f32(b.step_down_height * scale)
+    tr.oi_step_down = not b.state & PS_MISSILE
+    # SPHEREPATH::init_sphere: the first two spheres, scaled
+    tr.num_sphere = b.num_sphere
+    for s in range(b.num_sphere):
+        tr.local_sphere[s, 0] = f32(b.sphere[s, 0] * scale)
+        tr.local_sphere[s, 1] = f32(b.sphere[s, 1] * scale)
+        tr.local_sphere[s, 2] = f32(b.sphere[s, 2] * scale)
+        tr.local_sphere[s, 3] = f32(scale * b.sphere[s, 3])
+    tr.local_low_point[0] = tr.local_sphere[0, 0]
+    tr.local_low_point[1] = tr.local_sphere[0, 1]
+    tr.local_low_point[2] = f32(tr.local_sphere[0, 2] - tr.local_sphere[0, 3])
+    # SPHEREPATH::init_path
+    tr.begin_cell = b.cell
+    tr.begin_cell_id = b.cell_id
+    tr.begin_origin[:] = b.origin
+    tr.begin_q[:] = b.q
+    tr.end_cell_id = b.cell_id
+    tr.end_origin[0], tr.end_origin[1], tr.end_origin[2] = origin
+    tr.end_q[0], tr.end_q[1], tr.end_q[2], tr.end_q[3] = q
+    tr.curr_cell = b.cell
+    tr.curr_cell_id = b.cell_id
+    tr.curr_origin[:] = b.origin
+    tr.curr_q[:] = b.q
+    tr.curr_m[:] = b.m
+    cache_global_curr_center(tr)
+    tr.insert_type = 0
+    if ts & TS_STATIONARY_STUCK:
+        tr.frames_stationary_fall = 3
+    elif ts & TS_STATIONARY_STOP:
+        tr.frames_stationary_fall = 2
+    elif ts & TS_STATIONARY_FALL:
+        tr.frames_stationary_fall = 1
+    return find_transitional_position(w, tr)
+
+
+@njit(cache=True)
+def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
+    """Report touching the environment, bounce or stop, and keep the stationary bits.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` (a covered body collides
+    with no object and keeps no collision records) and of
+    :meth:`acphys.body.reports.CollisionReports.report_environment_collision`.
+    Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
+    CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
+    """
+    on_walkable = b.transient & TS_ON_WALKABLE
+    apply_bounce = not (prev_on_walkable and on_walkable) or b.state & PS_SLEDDING
+    if b.colliding_with_environment:
+        b.colliding_with_environment = tr.collided_with_environment
+    elif tr.collided_with_environment or (not prev_on_walkable and on_walkable):
+        if b.state & PS_REPORT_COLLISIONS:
+            events |= EVENT_COLLISION_ENVIRONMENT
+        b.colliding_with_environment = True
+        if b.state & PS_MISSILE:
+            b.state &= ~(PS_MISSILE | PS_ALIGN_PATH | PS_PATH_CLIPPED)
+    frames = tr.frames_stationary_fall
+    v = b.velocity
+    if frames <= 1:
+        if apply_bounce and tr.collision_normal_valid:
+            if b.state & PS_INELASTIC:
+                v[:] = 0.0
+            else:
+                n = tr.collision_normal
+                approach = v[2] * n[2] + v[1] * n[1] + n[0] * v[0]
+                if approach < 0.0:
+                    impulse = -(approach * (b.elasticity + 1.0))
+                    dy = f32(impulse * n[1])
+                    dz = f32(impulse * n[2])
+                    v[0], v[1], v[2] = f32(impulse * n[0] + v[0]), f32(dy + v[1]), f32(dz + v[2])
+    else:
+        v[:] = 0.0
+    if frames == 0 or frames == 3:
+        b.transient &= ~STATIONARY_MASK
+    elif frames == 1:
+        b.transient |= TS_STATIONARY_FALL
+    elif frames == 2:
+        b.transient |= TS_STATIONARY_STOP
+    else:
+        b.transient |= TS_STATIONARY_STUCK
+    return events
+
+
+@njit(cache=True)
+def set_position_internal(w, tr, i, moves, counters, journal, events):
+    """Commit the sweep: cell, frame, contact, walkable, water, sliding, collisions, shadows.
+    Returns ``(status, events)``: 0, BAIL, or ``GROW`` with the full cell in the counters.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.set_position_internal`.
+    Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
+    """
+    bodies, cells, shadow_pool = w[0], w[1], w[3]
+    b = bodies[i]
+    prev_on_walkable = b.transient & TS_ON_WALKABLE
+    prev_contact = b.transient & TS_CONTACT
+    if tr.curr_cell < 0:
+        return BAIL, events
+    if b.cell == tr.curr_cell:
+        b.cell_id = tr.curr_cell_id
+    else:
+        n = counters[MOVES]
+        if n >= moves.shape[0]:
+            return BAIL, events
+        moves[n, 0] = i
+        moves[n, 1] = b.cell
+        moves[n, 2] = tr.curr_cell
+        counters[MOVES] = n + 1
+        b.cell = tr.curr_cell
+        b.cell_id = cells[tr.curr_cell].cell_id
+    set_frame(b, t3(tr.curr_origin), t4(tr.curr_q), t9(tr.curr_m))
+    b.contact_cell_id = tr.contact_plane_cell_id
+    b.contact_n[:] = tr.contact_n
+    b.contact_d = tr.contact_d
+    if tr.contact_plane_valid:
+        b.transient |= TS_CONTACT
+    else:
+        b.transient &= ~TS_CONTACT
+    calc_acceleration(b)
+    if tr.contact_plane_is_water:
+        b.transient |= TS_WATER_CONTACT
+    else:
+        b.transient &= ~TS_WATER_CONTACT
+    if b.transient & TS_CONTACT:
+        status, events = set_on_walkable(b, b.contact_n[2] >= FLOOR_Z, events)
+        if status == BAIL:
+            return BAIL, events
+    else:
+        was = b.transient & TS_ON_WALKABLE
+        b.transient &= ~TS_ON_WALKABLE
+        if was:
+            if b.has_movement_manager:
+                return BAIL, events
+            events |= EVENT_LEAVE_GROUND
+        calc_acceleration(b)
+    b.sliding_normal[:] = tr.sliding_normal
+    if tr.sliding_normal_valid:
+        b.transient |= TS_SLIDING
+    else:
+        b.transient &= ~TS_SLIDING
+    events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
+    if tr.num_cells:
+        if not remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
+            return BAIL, events
+        full = add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters)
+        if full == -2:
+            return BAIL, events
+        if full >= 0:
+            counters[GROW_CELL] = full
+            return GROW, events
+    return 0, events
+
+
+@njit(cache=True)
+def update_object_internal(w, tr, i, quantum, moves, counters, journal):
+    """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (a covered body has no
+    managers to tick).
+    Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
+    """
+    bodies = w[0]
+    b = bodies[i]
+    events = 0
+    if not b.transient & TS_ACTIVE:
+        return 0, events
+    if b.cell < 0:
+        return 0, events
+    b.jumped_this_frame = False
+    origin, q, m = update_position_internal(b, quantum)
+    if (
+        abs(origin[0] - b.origin[0]) <= EPSILON
+        and abs(origin[1] - b.origin[1]) <= EPSILON
+        and abs(origin[2] - b.origin[2]) <= EPSILON
+    ):
+        set_frame(b, t3(b.origin), q, m)
+        b.cached_velocity[:] = 0.0
+        return 0, events
+    found = transition(w, tr, i, origin, q, m)
+    if found == BAIL:
+        return BAIL, events
+    if not found:
+        set_frame(b, t3(b.origin), q, m)
+        b.cached_velocity[:] = 0.0
+        return 0, events
+    offset = position_get_offset(b.cell_id, t3(b.origin), tr.curr_cell_id, t3(tr.curr_origin))
+    inv = 1.0 / f32(quantum)
+    inv32 = f32(inv)
+    b.cached_velocity[0] = f32(inv * offset[0])
+    b.cached_velocity[1] = f32(inv32 * offset[1])
+    b.cached_velocity[2] = f32(inv32 * offset[2])
+    return set_position_internal(w, tr, i, moves, counters, journal, events)
+
+
+# -- the clock ----------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def _log_step(log, counters, b, i, t, quantum, events):
+    """One trace row: the body right after a step."""
+    n = counters[LOGGED]
+    row = log[n]
+    row[0] = i
+    row[1] = t
+    row[2] = quantum
+    row[3] = b.cell_id
+    row[4:7] = b.origin
+    row[7:11] = b.q
+    row[11:14] = b.velocity
+    row[14:17] = b.cached_velocity
+    row[17:20] = b.omega
+    row[20] = b.transient
+    row[21:24] = b.contact_n
+    row[24] = events
+    counters[LOGGED] = n + 1
+
+
+@njit(cache=True)
+def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal):
+    """``update_object``'s slice: advance the physics timer, step with the float32 quantum.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj._run_quantum`.
+    """
+    clock[1] += quantum
+    step = f32(quantum)
+    status, events = update_object_internal(w, tr, i, step, moves, counters, journal)
+    if status != 0:
+        return status
+    counters[STEPS] += 1
+    if tracing:
+        _log_step(log, counters, w[0][i], i, clock[1], step, events)
+    return 0
+
+
+@njit(cache=True)
+def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
+    """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.update_object` (a covered body has no parent).
+    Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
+    """
+    bodies = w[0]
+    b = bodies[i]
+    if b.cell < 0 or b.state & PS_FROZEN:
+        b.transient &= ~TS_ACTIVE
+        return 0
+    player = int(clock[2])
+    if player >= 0:
+        p = bodies[player]
+        vector = position_get_offset(p.cell_id, t3(p.origin), b.cell_id, t3(b.origin))
+        b.player_vector[0], b.player_vector[1], b.player_vector[2] = vector
+        distance = v_length(vector)
+        b.player_distance = f32(distance)
+        if distance > ACTIVITY_DISTANCE and clock[3] != 0.0:
+            b.transient &= ~TS_ACTIVE
+        elif not b.state & PS_STATIC:
+            if not b.transient & TS_ACTIVE:
+                b.update_time = clock[0]
+            b.transient |= TS_ACTIVE
+    quantum = clock[0] - b.update_time
+    clock[1] = b.update_time
+    if quantum <= EPSILON or quantum > HUGE_QUANTUM:
+        b.update_time = clock[0]
+        return 0
+    if quantum > MAX_QUANTUM:
+        while True:
+            status = _run_quantum(w, tr, i, MAX_QUANTUM, clock, tracing, log, moves, counters, journal)
+            if status != 0:
+                return status
+            quantum -= MAX_QUANTUM
+            if quantum <= MAX_QUANTUM:
+                break
+        if quantum > MIN_QUANTUM:
+            status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
+            if status != 0:
+                return status
+    else:
+        status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
+        if status != 0:
+            return status
+    b.update_time = clock[1]
+    return 0
+
+
+@njit(cache=True)
+def run_bodies(bodies, cells, landblock_index, shadow_pool, tr_array, clock, start, tracing, log, moves,
+               counters, journal):
+    """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
+    that is not covered or hands its update back, or when a log or a cell's list is full.
+    Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
+    the body to go on from (not started, or rolled back).
+
+    ``clock``: ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
+
+    Port of :meth:`acphys.simulation.Physics.use_time`'s walk.
+    Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
+    """
+    w = (bodies, cells, landblock_index, shadow_pool)
+    tr = tr_array[0]
+    saved_tr = tr_array.copy()
+    saved = bodies[:1].copy()
+    n = len(bodies)
+    for i in range(start, n):
+        b = bodies[i]
+        if not b.covered:
+            return FALLBACK, i
+        if tracing and counters[LOGGED] + MAX_STEPS_PER_UPDATE > log.shape[0]:
+            return LOG_FULL, i
+        if counters[MOVES] + MAX_STEPS_PER_UPDATE > moves.shape[0]:
+            return LOG_FULL, i
+        saved[0] = b
+        saved_tr[0] = tr
+        logged, moved, steps, physics_time = counters[LOGGED], counters[MOVES], counters[STEPS], clock[1]
+        counters[JOURNAL] = 0
+        status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal)
+        if status != 0:
+            _undo(bodies, cells, shadow_pool, journal, counters)
+            bodies[i] = saved[0]
+            tr_array[0] = saved_tr[0]
+            counters[LOGGED], counters[MOVES], counters[STEPS] = logged, moved, steps
+            clock[1] = physics_time
+            if status == GROW:
+                return GROW, i
+            return FALLBACK, i
+        b.stale = True
+    return DONE, n

@@ -1,0 +1,182 @@
+"""The fast engine's arrays: one record per body, one per transition, and the world's cells.
+
+Every number is stored as a float64 (``f8``), although most hold float32 values (retail's
+``float`` fields): Numba computes an operation between two float32s in float32, where retail's x87
+and the reference engine compute in double, so float32 storage would round reads wrongly. The
+kernels narrow with ``f32`` at every store where the reference does, exactly as it does.
+
+A body's record holds what one step reads and writes (position, velocities, contact, the
+sequence, its shadows in cells); everything else stays on the reference ``PhysicsObj``, which
+the kernel covers only while that rest is idle (see :mod:`acphys.fast.coverage`). Records are in
+the order of retail's object table, the order ``CPhysics::UseTime`` runs them: one row per body,
+the fields of a step side by side (the loop is sequential; a step touches all of one row).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: The most spheres a sweep takes (``SPHEREPATH::init_sphere`` keeps the first two).
+MAX_SPHERES = 2
+#: The most cells one body's shadows are in, and the most cells a sweep's cell array holds.
+#: Two spheres of at most 12 m reach at most four land cells; more than this falls back.
+MAX_CELLS = 8
+#: The most nodes of a sequence the kernel plays (links then cycles); more falls back.
+MAX_NODES = 4
+
+BODY = np.dtype(
+    [
+        # -- which path runs the body, and whether its PhysicsObj is behind ------------------
+        ("covered", "u1"),  # the reference-side state is idle: the kernel may step this body
+        ("stale", "u1"),  # the kernel stepped the body since its PhysicsObj was last written
+        ("obj_id", "u4"),
+        # -- CPhysicsObj -------------------------------------------------------------------
+        ("state", "u4"),
+        ("transient", "u4"),
+        ("update_time", "f8"),
+        ("player_distance", "f8"),
+        ("player_vector", "f8", 3),
+        ("cell_id", "u4"),  # position.objcell_id
+        ("cell", "i4"),  # the kernel index of the cell the body is in (-1: none)
+        ("origin", "f8", 3),
+        ("q", "f8", 4),  # (w, x, y, z)
+        ("m", "f8", 9),  # the cached matrix, m_fl2gv
+        ("velocity", "f8", 3),
+        ("acceleration", "f8", 3),
+        ("omega", "f8", 3),
+        ("cached_velocity", "f8", 3),
+        ("friction", "f8"),
+        ("elasticity", "f8"),
+        ("scale", "f8"),
+        ("contact_n", "f8", 3),
+        ("contact_d", "f8"),
+        ("contact_cell_id", "u4"),
+        ("sliding_normal", "f8", 3),
+        ("jumped_this_frame", "u1"),
+        ("has_parent", "u1"),
+        ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
+        ("colliding_with_environment", "u1"),
+        ("has_movement_manager", "u1"),
+        # -- the setup (CPartArray) ----------------------------------------------------------
+        ("num_sphere", "i1"),
+        ("sphere", "f8", (MAX_SPHERES, 4)),  # centre x, y, z and radius, unscaled
+        ("step_up_height", "f8"),
+        ("step_down_height", "f8"),
+        # -- the shadows (CPhysicsObj::shadow_objects), in order --------------------------------
+        ("num_shadow", "i1"),
+        ("shadows_moved", "u1"),  # the kernel cast the shadows again since the object was written
+        ("shadow_cell", "i4", MAX_CELLS),  # kernel cell index, -1 for an id with no cell
+        ("shadow_cell_id", "u4", MAX_CELLS),
+        ("shadow_slot", "i4", MAX_CELLS),  # the shadow's index in its cell's list
+        # -- the sequence (CSequence) -------------------------------------------------------------
+        ("seq_nodes", "i1"),  # 0: no animation list
+        ("seq_curr", "i1"),
+        ("seq_first_cyclic", "i1"),
+        ("seq_anim", "i4", MAX_NODES),  # index into the animation table
+        ("seq_framerate", "f8", MAX_NODES),
+        ("seq_low", "i4", MAX_NODES),
+        ("seq_high", "i4", MAX_NODES),
+        ("seq_frame_number", "f8"),
+        ("seq_velocity", "f8", 3),
+        ("seq_omega", "f8", 3),
+    ]
+)
+
+#: One land cell of a loaded landblock: its two terrain triangles (vertices and planes) and what
+#: the kernel must leave to the reference path.
+CELL = np.dtype(
+    [
+        ("cell_id", "u4"),
+        ("landblock", "i4"),  # index of its landblock in the landblock table
+        ("water_type", "i1"),
+        ("block_water_type", "i1"),
+        ("num_polys", "i1"),  # 2, or 0 for a cell without terrain
+        ("vertex", "f8", (2, 3, 3)),  # triangle, vertex, xyz (landblock-local)
+        ("plane", "f8", (2, 4)),  # normal x, y, z and d
+        ("uncovered", "u1"),  # a building, voyeurs or anything else the kernel lacks
+        ("dirty", "u1"),  # the kernel changed the shadow list since the reference cell was written
+        ("num_shadows", "i4"),
+        ("shadow_start", "i4"),  # where the cell's shadow list starts in the shadow pool
+        ("shadow_capacity", "i4"),
+    ]
+)
+
+#: The transition the kernel sweeps with: SPHEREPATH, COLLISIONINFO and OBJECTINFO fields and the
+#: cell array. Retail hands out a pooled transition whose fields outlive a sweep; this record is
+#: that slot (``CTransition::makeTransition``), kept from body to body.
+TRANSITION = np.dtype(
+    [
+        # OBJECTINFO
+        ("oi_state", "u4"),
+        ("oi_scale", "f8"),
+        ("oi_step_up_height", "f8"),
+        ("oi_step_down_height", "f8"),
+        ("oi_step_down", "u1"),
+        ("oi_body", "i4"),
+        # SPHEREPATH
+        ("num_sphere", "i1"),
+        ("local_sphere", "f8", (MAX_SPHERES, 4)),
+        ("local_low_point", "f8", 3),
+        ("global_sphere", "f8", (MAX_SPHERES, 4)),
+        ("global_low_point", "f8", 3),
+        ("global_curr_center", "f8", (MAX_SPHERES, 3)),
+        ("begin_cell", "i4"),
+        ("begin_cell_id", "u4"),
+        ("begin_origin", "f8", 3),
+        ("begin_q", "f8", 4),
+        ("end_cell_id", "u4"),
+        ("end_origin", "f8", 3),
+        ("end_q", "f8", 4),
+        ("curr_cell", "i4"),
+        ("curr_cell_id", "u4"),
+        ("curr_origin", "f8", 3),
+        ("curr_q", "f8", 4),
+        ("curr_m", "f8", 9),
+        ("check_cell", "i4"),
+        ("check_cell_id", "u4"),
+        ("check_origin", "f8", 3),
+        ("check_q", "f8", 4),
+        ("check_m", "f8", 9),
+        ("backup_cell", "i4"),
+        ("backup_cell_id", "u4"),
+        ("backup_origin", "f8", 3),
+        ("backup_q", "f8", 4),
+        ("backup_m", "f8", 9),
+        ("global_offset", "f8", 3),
+        ("insert_type", "i1"),
+        ("backup", "i1"),
+        ("step_up", "u1"),
+        ("step_down", "u1"),
+        ("collide", "u1"),
+        ("neg_poly_hit", "u1"),
+        ("check_walkable", "u1"),
+        ("cell_array_valid", "u1"),
+        ("hits_interior_cell", "u1"),
+        ("walkable", "u1"),  # a walkable polygon is recorded (the kernel never records one)
+        ("walkable_allowance", "f8"),
+        ("walk_interp", "f8"),
+        ("step_down_amt", "f8"),
+        # COLLISIONINFO
+        ("last_known_contact_plane_valid", "u1"),
+        ("last_known_contact_n", "f8", 3),
+        ("last_known_contact_d", "f8"),
+        ("last_known_contact_plane_is_water", "u1"),
+        ("last_known_contact_plane_cell_id", "u4"),
+        ("contact_plane_valid", "u1"),
+        ("contact_n", "f8", 3),
+        ("contact_d", "f8"),
+        ("contact_plane_cell_id", "u4"),
+        ("contact_plane_is_water", "u1"),
+        ("sliding_normal_valid", "u1"),
+        ("sliding_normal", "f8", 3),
+        ("collision_normal_valid", "u1"),
+        ("collision_normal", "f8", 3),
+        ("collided_with_environment", "u1"),
+        ("frames_stationary_fall", "i4"),
+        # CELLARRAY
+        ("num_cells", "i4"),
+        ("added_outside", "u1"),
+        ("cells", "i4", MAX_CELLS),  # kernel cell index, -1 for an id with no cell
+        ("cell_ids", "u4", MAX_CELLS),
+    ]
+)

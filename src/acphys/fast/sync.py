@@ -1,0 +1,98 @@
+"""Hand-off between a body's record and its reference ``PhysicsObj``, both ways, exactly.
+
+:func:`load_body` copies what a step reads and writes from the object into the record (every
+value is already a float32 or a double there, so the copy is exact); :func:`store_body` copies it
+back. Cells, shadows and the objects lists of cells are handed over by the engine, which knows
+the order they changed in (:mod:`acphys.fast.engine`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from acphys.flags import PhysicsState, TransientState
+from acphys.geometry.plane import Plane
+from acphys.math.vector import Vector3
+from acphys.physics_obj import PhysicsObj
+
+
+def _vec(v: Vector3) -> tuple[float, float, float]:
+    return (v.x, v.y, v.z)
+
+
+def _vector(values: np.ndarray) -> Vector3:
+    x, y, z = values.tolist()
+    return Vector3(x, y, z)
+
+
+def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool) -> None:
+    """Copy ``body`` into ``record`` (``cell_index``: the kernel index of its cell, -1 for none)."""
+    record["covered"] = covered
+    record["stale"] = False
+    record["obj_id"] = body.id
+    record["state"] = int(body.state)
+    record["transient"] = int(body.transient_state)
+    record["update_time"] = body.update_time
+    record["player_distance"] = body.player_distance
+    record["player_vector"] = _vec(body.player_vector)
+    record["cell_id"] = body.position.objcell_id
+    record["cell"] = cell_index if body.cell is not None else -1
+    frame = body.position.frame
+    record["origin"] = _vec(frame.origin)
+    record["q"] = frame.rotation
+    record["m"] = frame.m
+    record["velocity"] = _vec(body.velocity)
+    record["acceleration"] = _vec(body.acceleration)
+    record["omega"] = _vec(body.omega)
+    record["cached_velocity"] = _vec(body.cached_velocity)
+    record["friction"] = body.friction
+    record["elasticity"] = body.elasticity
+    record["scale"] = body.scale
+    record["contact_n"] = _vec(body.contact_plane.N)
+    record["contact_d"] = body.contact_plane.d
+    record["contact_cell_id"] = body.contact_plane_cell_id
+    record["sliding_normal"] = _vec(body.sliding_normal)
+    record["jumped_this_frame"] = body.jumped_this_frame
+    record["colliding_with_environment"] = body.colliding_with_environment
+    record["has_movement_manager"] = body.movement_manager is not None
+    record["has_parent"] = body.parent is not None
+    parts = body.part_array
+    spheres = parts.setup.spheres if parts is not None else []
+    record["collider"] = (
+        parts is not None
+        and body.weenie_obj is None
+        and not body.state & PhysicsState.HAS_PHYSICS_BSP
+        and not parts.setup.cylspheres
+        and len(spheres) <= 2
+    )
+    record["num_sphere"] = min(len(spheres), 2)
+    for s, sphere in enumerate(spheres[:2]):
+        c = sphere.center
+        record["sphere"][s] = (c.x, c.y, c.z, sphere.radius)
+    if parts is not None:
+        record["step_up_height"] = parts.setup.step_up_height
+        record["step_down_height"] = parts.setup.step_down_height
+
+
+def store_body(record: np.void, body: PhysicsObj) -> None:
+    """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell or shadows)."""
+    body.state = PhysicsState(int(record["state"]))
+    body.transient_state = TransientState(int(record["transient"]))
+    body.update_time = float(record["update_time"])
+    body.player_distance = float(record["player_distance"])
+    body.player_vector = _vector(record["player_vector"])
+    frame = body.position.frame
+    frame.origin = _vector(record["origin"])
+    frame.qw, frame.qx, frame.qy, frame.qz = record["q"].tolist()
+    frame.m[:] = record["m"].tolist()
+    body.velocity = _vector(record["velocity"])
+    body.acceleration = _vector(record["acceleration"])
+    body.omega = _vector(record["omega"])
+    body.cached_velocity = _vector(record["cached_velocity"])
+    body.contact_plane = Plane(_vector(record["contact_n"]), float(record["contact_d"]))
+    body.contact_plane_cell_id = int(record["contact_cell_id"])
+    body.sliding_normal = _vector(record["sliding_normal"])
+    body.jumped_this_frame = bool(record["jumped_this_frame"])
+    body.colliding_with_environment = bool(record["colliding_with_environment"])
+    if body.part_array is not None:
+        body.part_array.update_parts(frame)

@@ -1,0 +1,145 @@
+"""The world as the kernel reads it: land cells with their terrain, and who shadows into each.
+
+The kernel knows the land cells of the loaded landblocks (``LandBlock.lcell``), indexed
+``64 * landblock + (low word - 1)``, with their two triangles and water type. A cell it cannot
+sweep through alone is marked ``uncovered``: a building stands in it, global detection watches
+it (voyeurs), or an entry restriction is set; a step that would touch such a cell (or any cell
+the kernel does not know: an env cell, a cell of a landblock that is not loaded) runs on the
+reference path instead.
+
+Each cell's shadow list is kept in the shadow pool, in the order of the reference
+``ObjCell.shadow_objects``: a body's entry is its index in the engine's body table, any other
+object's (a static object) is ``-1 - k``, ``k`` its index in :attr:`WorldArrays.others`. The kernel
+adds and removes entries exactly as ``add_shadow_object`` and ``remove_shadow_object`` do
+(append; the last entry takes a removed one's slot), so the two lists stay the same list.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from acphys.fast.layout import CELL
+from acphys.math.cell_id import landblock_of
+from acphys.physics_obj import PhysicsObj
+from acphys.world.land_cell import LandCell
+from acphys.world.obj_cell import ObjCell, ShadowObj
+from acphys.world.world import World
+
+#: Cells per landblock (8 × 8).
+BLOCK_CELLS = 64
+#: The shadow slots a cell starts with; a cell that fills them is given twice as many.
+INITIAL_SHADOW_CAPACITY = 8
+
+
+@dataclass
+class WorldArrays:
+    """The kernel's cells (:data:`~acphys.fast.layout.CELL` records), the landblock lookup, and the
+    shadow pool; ``land_cells[k]`` is the reference cell of kernel cell ``k``."""
+
+    cells: np.ndarray
+    #: ``landblock_index[0xXXYY]``: the landblock's index in ``cells // 64``, or -1.
+    landblock_index: np.ndarray
+    shadow_pool: np.ndarray
+    land_cells: list[LandCell]
+    #: Objects other than the engine's bodies that shadow into known cells (static objects).
+    others: list[PhysicsObj] = field(default_factory=list)
+    #: Each other object's shadow entries by kernel cell (they never move).
+    other_shadows: dict[tuple[int, int], ShadowObj] = field(default_factory=dict)
+
+    def cell_index(self, cell_id: int) -> int:
+        """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a loaded block)."""
+        low = cell_id & 0xFFFF
+        if not 1 <= low <= BLOCK_CELLS:
+            return -1
+        block = int(self.landblock_index[landblock_of(cell_id)])
+        return -1 if block < 0 else BLOCK_CELLS * block + low - 1
+
+    def shadow_list(self, k: int) -> np.ndarray:
+        """Kernel cell ``k``'s shadow entries, in order (a view into the pool)."""
+        cell = self.cells[k]
+        start = int(cell["shadow_start"])
+        return self.shadow_pool[start : start + int(cell["num_shadows"])]
+
+    def grow(self, k: int) -> None:
+        """Give kernel cell ``k`` twice its shadow capacity (the kernel asked for room)."""
+        capacity = self.cells["shadow_capacity"].copy()
+        capacity[k] *= 2
+        old = [self.shadow_list(i).copy() for i in range(len(self.cells))]
+        self.cells["shadow_start"] = np.concatenate(([0], np.cumsum(capacity)[:-1]))
+        self.cells["shadow_capacity"] = capacity
+        self.shadow_pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
+        for i, entries in enumerate(old):
+            start = int(self.cells[i]["shadow_start"])
+            self.shadow_pool[start : start + len(entries)] = entries
+
+    def set_shadow_list(self, k: int, entries: Sequence[int]) -> None:
+        """Make ``entries`` kernel cell ``k``'s shadow list (growing its room as needed)."""
+        while len(entries) > self.cells[k]["shadow_capacity"]:
+            self.grow(k)
+        start = int(self.cells[k]["shadow_start"])
+        self.shadow_pool[start : start + len(entries)] = entries
+        self.cells[k]["num_shadows"] = len(entries)
+
+
+def _uncovered(cell: LandCell) -> bool:
+    """What the kernel leaves to the reference path in a land cell: a building, watching voyeurs,
+    an entry restriction."""
+    return cell.building is not None or bool(cell.voyeur_table) or bool(cell.restriction_obj)
+
+
+def build_world_arrays(world: World, bodies: Sequence[PhysicsObj]) -> WorldArrays:
+    """The kernel's view of ``world``, whose simulated ``bodies`` are numbered in table order."""
+    landscape = world.landscape
+    blocks = [landscape.get_landblock(key << 16) for key in sorted(landscape.landblocks())]
+    landblock_index = np.full(0x10000, -1, dtype=np.int32)
+    cells = np.zeros(BLOCK_CELLS * len(blocks), dtype=CELL)
+    land_cells: list[LandCell] = []
+    for b, block in enumerate(blocks):
+        landblock_index[landblock_of(block.id)] = b
+        for i, cell in enumerate(block.lcell):
+            k = BLOCK_CELLS * b + i
+            land_cells.append(cell)
+            record = cells[k]
+            record["cell_id"] = cell.id
+            record["landblock"] = b
+            record["water_type"] = int(cell.water_type)
+            record["block_water_type"] = int(block.water_type)
+            record["num_polys"] = len(cell.polygons)
+            for p, poly in enumerate(cell.polygons):
+                for v, vertex in enumerate(poly.vertices):
+                    record["vertex"][p, v] = (vertex.x, vertex.y, vertex.z)
+                n = poly.plane.N
+                record["plane"][p] = (n.x, n.y, n.z, poly.plane.d)
+            record["uncovered"] = _uncovered(cell)
+    cells["shadow_capacity"] = INITIAL_SHADOW_CAPACITY
+    cells["shadow_start"] = np.arange(len(cells), dtype=np.int32) * INITIAL_SHADOW_CAPACITY
+    arrays = WorldArrays(
+        cells,
+        landblock_index,
+        np.full(len(cells) * INITIAL_SHADOW_CAPACITY, -(2**31), dtype=np.int32),
+        land_cells,
+    )
+    index = {id(body): i for i, body in enumerate(bodies)}
+    for k, cell in enumerate(land_cells):
+        arrays.set_shadow_list(k, shadow_entries(arrays, k, cell, index))
+    return arrays
+
+
+def shadow_entries(arrays: WorldArrays, k: int, cell: ObjCell, index: dict[int, int]) -> list[int]:
+    """Kernel cell ``k``'s shadow list read from the reference ``cell``: bodies by their index in
+    ``index`` (``id(body)`` → index), other objects as ``-1 - k`` (added to ``arrays.others``)."""
+    entries = []
+    for shadow in cell.shadow_objects:
+        body = shadow.physobj
+        number = index.get(id(body))
+        if number is None:
+            if body not in arrays.others:
+                arrays.others.append(body)
+            other = arrays.others.index(body)
+            arrays.other_shadows[(other, k)] = shadow
+            number = -1 - other
+        entries.append(number)
+    return entries

@@ -24,6 +24,7 @@ import numpy as np
 
 from acphys.constants import MIN_QUANTUM
 from acphys.fast.coverage import uncovered_reason
+from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
@@ -69,6 +70,8 @@ class FastPhysics(Physics):
         self._counters = np.zeros(kernels.NUM_COUNTERS, dtype=np.int64)
         self._journal = np.zeros((kernels.JOURNAL_ROWS, 3), dtype=np.int64)
         self._index: dict[int, int] = {}
+        self._grid_heads = np.full(grid.BUCKETS, -1, dtype=np.int32)
+        self._grid = np.zeros(1, dtype=np.float64)
         #: True once the objects may have changed behind the records (a flush, a new body).
         self._reload = True
         self._writer: Any = None
@@ -111,6 +114,8 @@ class FastPhysics(Physics):
         for i in range(len(self._bodies)):
             self._load(i)
         transition_from_pool(self._transition, self.world_arrays)
+        self._grid[grid.MAX_REACH] = float(self._records["reach"].max(initial=0.0))
+        grid.grid_place_all(self._records, self._grid_heads)
         self._clock[1] = self.world.physics_time
         self._reload = False
 
@@ -150,6 +155,8 @@ class FastPhysics(Physics):
                 arrays.cells,
                 arrays.landblock_index,
                 arrays.shadow_pool,
+                self._grid_heads,
+                self._grid,
                 self._transition,
                 self._clock,
                 start,
@@ -174,6 +181,7 @@ class FastPhysics(Physics):
         body = self._bodies[i]
         self.flush()
         self.world.physics_time = float(self._clock[1])
+        partners = self._partners(body)
         if self.world.has_object(body):
             steps = _StepCounter(body)
             try:
@@ -183,11 +191,19 @@ class FastPhysics(Physics):
             self.counts.reference += steps.count
             transition_from_pool(self._transition, self.world_arrays)
         self._clock[1] = self.world.physics_time
-        self._reload_after(i)
+        self._reload_after(i, partners | self._partners(body))
 
-    def _reload_after(self, i: int) -> None:
-        """Read back body ``i`` and the cells its shadows left or entered, and anybody it reported
-        a collision to."""
+    def _partners(self, body: PhysicsObj) -> set[int]:
+        """The engine's bodies in ``body``'s collision table: a step of ``body`` may report to them."""
+        if body.collision_table is None:
+            return set()
+        partners = (self.world.get_object(object_id) for object_id in body.collision_table.ids())
+        return {self._index[id(o)] for o in partners if o is not None and id(o) in self._index}
+
+    def _reload_after(self, i: int, partners: set[int]) -> None:
+        """Read back body ``i``, its collision ``partners`` (before and after its step: a step
+        reports collisions and their ends to both bodies), and the shadow lists of the cells its
+        shadows left or entered (with the slots of the bodies listed there)."""
         assert self._arrays is not None
         arrays = self._arrays
         record = self._records[i]
@@ -197,14 +213,19 @@ class FastPhysics(Physics):
         touched.discard(-1)
         for k in touched:
             arrays.set_shadow_list(k, shadow_entries(arrays, k, arrays.land_cells[k], self._index))
-        others = {i}
-        if body.collision_table is not None:
-            others |= {self._index[id(o)] for o in map(self.world.get_object, body.collision_table.ids())
-                       if o is not None and id(o) in self._index}
-        for k in touched:
-            others |= {int(e) for e in arrays.shadow_list(k) if e >= 0}
+        others = {i} | partners
         for j in sorted(others):
             self._load(j)
+            reach = float(self._records[j]["reach"])
+            self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
+            grid.grid_place(self._records, self._grid_heads, j)
+        for k in touched:
+            for slot, j in enumerate(arrays.shadow_list(k).tolist()):
+                if j >= 0 and j not in others:
+                    other = self._records[j]
+                    cells = other["shadow_cell"][: other["num_shadow"]].tolist()
+                    if k in cells:
+                        other["shadow_slot"][cells.index(k)] = slot
 
     # -- writing back ---------------------------------------------------------------------------
 

@@ -54,6 +54,7 @@ BODY = np.dtype(
         ("sliding_normal", "f8", 3),
         ("jumped_this_frame", "u1"),
         ("has_parent", "u1"),
+        ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
         ("colliding_with_environment", "u1"),
         ("has_movement_manager", "u1"),
@@ -68,6 +69,9 @@ BODY = np.dtype(
         ("shadow_cell", "i4", MAX_CELLS),  # kernel cell index, -1 for an id with no cell
         ("shadow_cell_id", "u4", MAX_CELLS),
         ("shadow_slot", "i4", MAX_CELLS),  # the shadow's index in its cell's list
+        ("grid_bucket", "i4"),  # the broad-phase grid bucket the body is filed in (-1: none)
+        ("grid_next", "i4"),
+        ("grid_prev", "i4"),
         # -- the sequence (CSequence) -------------------------------------------------------------
         ("seq_nodes", "i1"),  # 0: no animation list
         ("seq_curr", "i1"),
@@ -96,6 +100,7 @@ CELL = np.dtype(
         ("uncovered", "u1"),  # a building, voyeurs or anything else the kernel lacks
         ("dirty", "u1"),  # the kernel changed the shadow list since the reference cell was written
         ("num_shadows", "i4"),
+        ("num_others", "i4"),  # shadows of objects that are not the engine's bodies (static objects)
         ("shadow_start", "i4"),  # where the cell's shadow list starts in the shadow pool
         ("shadow_capacity", "i4"),
     ]

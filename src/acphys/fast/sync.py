@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from acphys.body.reports import REACH_MARGIN
 from acphys.flags import PhysicsState, TransientState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
@@ -69,6 +70,10 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     for s, sphere in enumerate(spheres[:2]):
         c = sphere.center
         record["sphere"][s] = (c.x, c.y, c.z, sphere.radius)
+    record["reach"] = (
+        max(((s.center.length() + s.radius) * body.scale for s in spheres), default=0.0) * (1.0 + 1e-6)
+        + REACH_MARGIN
+    )
     if parts is not None:
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height

@@ -82,6 +82,7 @@ class WorldArrays:
         start = int(self.cells[k]["shadow_start"])
         self.shadow_pool[start : start + len(entries)] = entries
         self.cells[k]["num_shadows"] = len(entries)
+        self.cells[k]["num_others"] = sum(1 for entry in entries if entry < 0)
 
 
 def _uncovered(cell: LandCell) -> bool:

@@ -9,7 +9,8 @@ a building, water depth of a partly wet cell, a cell the kernel does not know, n
 chain, and the tick restores the body as it was.
 
 The transition record ``tr`` (:data:`~acphys.fast.layout.TRANSITION`) is retail's pooled
-transition; ``w`` bundles the world: ``(bodies, cells, landblock_index, shadow_pool)``.
+transition; ``w`` bundles the world: ``(bodies, cells, landblock_index, shadow_pool, grid heads,
+grid)`` (:mod:`acphys.fast.kernels.grid`).
 
 Retail recurses (``transitional_insert`` → ``step_down`` → ``transitional_insert`` ...); Numba
 cannot cache recursive functions, so each nesting level is its own compiled function
@@ -45,6 +46,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalize_check_small,
 )
+from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT
 from acphys.world.terrain import WaterType
@@ -539,26 +541,63 @@ def body_find_obj_collisions(w, tr, j):
 
 
 @njit(cache=True)
+def _asks(bodies, tr, j, k):
+    """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j``: shadowed there, not the
+    mover, not held."""
+    other = bodies[j]
+    if j == tr.oi_body or other.has_parent:
+        return False
+    for s in range(other.num_shadow):  # noqa: SIM110 (Numba compiles no generator expressions)
+        if other.shadow_cell[s] == k:
+            return True
+    return False
+
+
+@njit(cache=True)
 def find_obj_collisions(w, tr, k):
-    """Ask each shadow of cell ``k``, in list order, to collide with the sweep.
+    """Ask the bodies shadowed in cell ``k`` to collide with the sweep; OK when every one would
+    answer OK without touching anything, else BAIL (as for any static object's shadow).
+
+    The bodies within reach are found through the grid (:mod:`acphys.fast.kernels.grid`); a
+    sweep whose search would be too wide walks the cell's list, in order.
 
     Port of :meth:`acphys.world.obj_cell.ObjCell.find_obj_collisions`.
     Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
     """
     if tr.insert_type == IT_INITIAL_PLACEMENT:
         return OK
-    bodies, cells, shadow_pool = w[0], w[1], w[3]
+    bodies, cells, shadow_pool, heads, grid = w[0], w[1], w[3], w[4], w[5]
     cell = cells[k]
-    start = cell.shadow_start
-    for i in range(cell.num_shadows):
-        entry = shadow_pool[start + i]
-        if entry < 0:
-            return BAIL  # a static object's shapes are the reference's
-        if entry == tr.oi_body or bodies[entry].has_parent:
-            continue
-        result = body_find_obj_collisions(w, tr, entry)
-        if result != OK:
-            return result
+    if cell.num_others:
+        return BAIL  # a static object's shapes are the reference's
+    x0, y0 = block_origin(tr.check_cell_id)
+    reach = grid[MAX_REACH]
+    low_x = low_y = math.inf
+    high_x = high_y = -math.inf
+    for s in range(tr.num_sphere):
+        r = tr.global_sphere[s, 3] + reach
+        x, y = x0 + tr.global_sphere[s, 0], y0 + tr.global_sphere[s, 1]
+        low_x, high_x = min(low_x, x - r), max(high_x, x + r)
+        low_y, high_y = min(low_y, y - r), max(high_y, y + r)
+    tx0, tx1 = math.floor(low_x / TILE), math.floor(high_x / TILE)
+    ty0, ty1 = math.floor(low_y / TILE), math.floor(high_y / TILE)
+    if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > MAX_TILES:
+        for i in range(cell.num_shadows):
+            entry = shadow_pool[cell.shadow_start + i]
+            if _asks(bodies, tr, entry, k):
+                result = body_find_obj_collisions(w, tr, entry)
+                if result != OK:
+                    return result
+        return OK
+    for tx in range(tx0, tx1 + 1):
+        for ty in range(ty0, ty1 + 1):
+            j = heads[bucket_of(tx, ty)]
+            while j >= 0:
+                if _asks(bodies, tr, j, k):
+                    result = body_find_obj_collisions(w, tr, j)
+                    if result != OK:
+                        return result
+                j = bodies[j].grid_next
     return OK
 
 

@@ -41,6 +41,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalized,
 )
+from acphys.fast.kernels.grid import grid_place
 from acphys.fast.kernels.sweep import (
     cache_global_curr_center,
     find_transitional_position,
@@ -688,8 +689,8 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
 
 
 @njit(cache=True)
-def run_bodies(bodies, cells, landblock_index, shadow_pool, tr_array, clock, start, tracing, log, moves,
-               counters, journal):
+def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, tr_array, clock, start, tracing,
+               log, moves, counters, journal):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
@@ -700,7 +701,7 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, tr_array, clock, sta
     Port of :meth:`acphys.simulation.Physics.use_time`'s walk.
     Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
     """
-    w = (bodies, cells, landblock_index, shadow_pool)
+    w = (bodies, cells, landblock_index, shadow_pool, heads, grid)
     tr = tr_array[0]
     saved_tr = tr_array.copy()
     saved = bodies[:1].copy()
@@ -728,4 +729,5 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, tr_array, clock, sta
                 return GROW, i
             return FALLBACK, i
         b.stale = True
+        grid_place(bodies, heads, i)
     return DONE, n

@@ -1,0 +1,89 @@
+"""The kernel's broad phase: bodies filed by the square of the ground their origin is over.
+
+Not retail. A cell's ``find_obj_collisions`` asks every body shadowed there; a body whose spheres
+stay out of reach of the sweep can only answer OK and change nothing (the reference's own
+shortcut, :meth:`acphys.body.reports.CollisionReports.out_of_reach`). So the kernel asks only the
+bodies filed near the sweep: each body is filed by the ``TILE``-metre square (landblock-global
+metres) under its origin, in a hash of squares whose chains run through the records
+(``grid_bucket``, ``grid_next``, ``grid_prev``), and a sweep looks in every square within the
+reach of its spheres plus the longest reach of any body (``grid[MAX_REACH]``). Any body that
+could answer other than OK is found that way, and the kernel hands such a step to the reference
+path; if none could, the reference would have answered OK too, whatever its list order.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from acphys.constants import BLOCK_LENGTH
+
+#: The side of a grid square, in metres.
+TILE = 4.0
+#: Buckets in the hash of squares (a power of two).
+BUCKETS = 1 << 16
+#: ``grid`` (float64) slots.
+MAX_REACH = 0
+#: A sweep whose search would cover more squares than this asks the cell's whole list instead.
+MAX_TILES = 64
+
+
+@njit(cache=True, inline="always")
+def block_origin(cell_id):
+    """The landblock-global metres of ``cell_id``'s landblock's south-west corner."""
+    return ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH, ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH
+
+
+@njit(cache=True, inline="always")
+def bucket_of(tx, ty):
+    """The hash bucket of square ``(tx, ty)``."""
+    return ((tx * 73856093) ^ (ty * 19349663)) & (BUCKETS - 1)
+
+
+@njit(cache=True)
+def grid_remove(bodies, heads, i):
+    """Take body ``i`` out of the grid (nothing if it is not filed)."""
+    b = bodies[i]
+    bucket = b.grid_bucket
+    if bucket < 0:
+        return
+    if b.grid_prev >= 0:
+        bodies[b.grid_prev].grid_next = b.grid_next
+    else:
+        heads[bucket] = b.grid_next
+    if b.grid_next >= 0:
+        bodies[b.grid_next].grid_prev = b.grid_prev
+    b.grid_bucket = -1
+    b.grid_next = -1
+    b.grid_prev = -1
+
+
+@njit(cache=True)
+def grid_place(bodies, heads, i):
+    """File body ``i`` by the square under its origin; a body without shadows is not filed."""
+    grid_remove(bodies, heads, i)
+    b = bodies[i]
+    if b.num_shadow <= 0 or not b.cell_id:
+        return
+    x0, y0 = block_origin(b.cell_id)
+    bucket = bucket_of(math.floor((x0 + b.origin[0]) / TILE), math.floor((y0 + b.origin[1]) / TILE))
+    head = heads[bucket]
+    b.grid_bucket = bucket
+    b.grid_prev = -1
+    b.grid_next = head
+    if head >= 0:
+        bodies[head].grid_prev = i
+    heads[bucket] = i
+
+
+@njit(cache=True)
+def grid_place_all(bodies, heads):
+    """File every body afresh."""
+    heads[:] = -1
+    for i in range(len(bodies)):
+        bodies[i].grid_bucket = -1
+        bodies[i].grid_next = -1
+        bodies[i].grid_prev = -1
+    for i in range(len(bodies)):
+        grid_place(bodies, heads, i)

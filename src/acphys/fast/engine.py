@@ -17,7 +17,7 @@ bodies directly, so after a flush the records are read again before the next ker
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -26,6 +26,7 @@ from acphys.constants import MIN_QUANTUM
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
+from acphys.fast.kernels.cells import BAIL_REASONS
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.sync import load_body, store_body
@@ -43,10 +44,14 @@ LOG_ROWS = 4096
 
 @dataclass
 class Counts:
-    """Body-steps taken by each path (``update_object_internal`` calls)."""
+    """Body-steps taken by each path (``update_object_internal`` calls), and why updates went to
+    the reference path: ``reasons`` counts body updates by reason (a reason of
+    :data:`~acphys.fast.kernels.cells.BAIL_REASONS`, or the first thing
+    :func:`~acphys.fast.coverage.uncovered_reason` found)."""
 
     kernel: int = 0
     reference: int = 0
+    reasons: dict[str, int] = field(default_factory=dict)
 
     @property
     def reference_share(self) -> float:
@@ -70,6 +75,8 @@ class FastPhysics(Physics):
         self._counters = np.zeros(kernels.NUM_COUNTERS, dtype=np.int64)
         self._journal = np.zeros((kernels.JOURNAL_ROWS, 3), dtype=np.int64)
         self._index: dict[int, int] = {}
+        #: Why each body is not covered ("" when it is): the first uncovered_reason.
+        self._uncovered: list[str] = []
         self._grid_heads = np.full(grid.BUCKETS, -1, dtype=np.int32)
         self._grid = np.zeros(1, dtype=np.float64)
         #: True once the objects may have changed behind the records (a flush, a new body).
@@ -88,6 +95,7 @@ class FastPhysics(Physics):
         self._bodies = self._walk_order()
         self._index = {id(body): i for i, body in enumerate(self._bodies)}
         self._records = np.zeros(len(self._bodies), dtype=BODY)
+        self._uncovered = [""] * len(self._bodies)
         self._arrays = build_world_arrays(self.world, self._bodies)
         self._reload = True
 
@@ -103,6 +111,7 @@ class FastPhysics(Physics):
             reason = uncovered_reason(body, arrays.cell_index, observer)
         record = self._records[i]
         load_body(record, body, cell, reason is None)
+        self._uncovered[i] = reason or ""
         shadows = body.shadow_objects[: record["shadow_cell"].size]
         record["num_shadow"] = len(shadows)
         for s, shadow in enumerate(shadows):
@@ -172,9 +181,18 @@ class FastPhysics(Physics):
             if status == kernels.GROW:
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
             elif status == kernels.FALLBACK:
+                self._count_reason(start)
                 self._reference_update(start)
                 start += 1
         self.world.physics_time = float(self._clock[1])
+
+    def _count_reason(self, i: int) -> None:
+        record = self._records[i]
+        if record["covered"]:
+            reason = BAIL_REASONS[int(self._counters[kernels.REASON])]
+        else:
+            reason = self._uncovered[i]
+        self.counts.reasons[reason] = self.counts.reasons.get(reason, 0) + 1
 
     def _reference_update(self, i: int) -> None:
         """Body ``i``'s ``update_object`` on the reference path, its world up to date."""

@@ -183,5 +183,7 @@ TRANSITION = np.dtype(
         ("added_outside", "u1"),
         ("cells", "i4", MAX_CELLS),  # kernel cell index, -1 for an id with no cell
         ("cell_ids", "u4", MAX_CELLS),
+        # the kernel's own: why the last step was handed back (acphys.fast.kernels.cells.BAIL_REASONS)
+        ("bail", "i4"),
     ]
 )

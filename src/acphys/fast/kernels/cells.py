@@ -20,6 +20,33 @@ from acphys.fast.layout import MAX_CELLS
 #: A transition state only the kernel returns: "the reference path must take this step".
 BAIL = -1
 
+#: Why a step was handed back (``TRANSITION.bail``, counted by the engine): the names are
+#: :data:`BAIL_REASONS`, by code.
+BAIL_REASONS = (
+    "none",
+    "a static object's shadow",
+    "a body within reach",
+    "a body the kernel cannot collide with",
+    "an ethereal obstruction",
+    "a cell the kernel does not know (indoors, unloaded, a building or watchers)",
+    "leaving the known cells",
+    "the water depth of a partly wet cell",
+    "a walkable polygon, a collision or a back-face hit",
+    "nesting deeper than the compiled levels",
+    "landing or leaving the ground with a movement manager",
+    "a full journal or log",
+    "an animation hook",
+)
+R_STATIC, R_REACH, R_SHAPE, R_ETHEREAL, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7
+R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK = 8, 9, 10, 11, 12
+
+
+@njit(cache=True, inline="always")
+def bail(tr, reason):
+    """Hand the step back to the reference path, saying why."""
+    tr.bail = reason
+    return BAIL
+
 
 @njit(cache=True, inline="always")
 def cell_index(landblock_index, cell_id):

@@ -30,7 +30,17 @@ from numba import njit
 from acphys.constants import EPSILON, FLOOR_Z, LANDING_Z
 from acphys.fast.kernels.cells import (
     BAIL,
+    R_CELL,
+    R_DEEP,
+    R_ETHEREAL,
+    R_NO_CELL,
+    R_REACH,
+    R_SHAPE,
+    R_SHAPES,
+    R_STATIC,
+    R_WATER,
     add_all_outside_cells,
+    bail,
     cell_array_clear,
     cell_index,
     find_terrain_poly,
@@ -406,7 +416,7 @@ def find_env_collisions(w, tr, k):
     if cell.block_water_type == WT_ENTIRELY_WATER and not bodies[tr.oi_body].state & PS_MISSILE:
         return COLLIDED
     if cell.water_type == WT_PARTIALLY_WATER:
-        return BAIL
+        return bail(tr, R_WATER)
     water_depth = ENTIRELY_WATER_DEPTH if cell.water_type == WT_ENTIRELY_WATER else 0.0
     cx = f32(tr.global_sphere[0, 0] - ox)
     cy = f32(tr.global_sphere[0, 1] - oy)
@@ -523,20 +533,20 @@ def body_find_obj_collisions(w, tr, j):
     if state & PS_ETHEREAL and state & PS_IGNORE_COLLISIONS:
         return OK
     if not other.collider:
-        return BAIL
+        return bail(tr, R_SHAPE)
     mover_ethereal = bodies[tr.oi_body].state & PS_ETHEREAL
     ethereal = state & PS_ETHEREAL or (mover_ethereal and not state & PS_STATIC)
     if ethereal and tr.step_down:
         return OK
-    if ethereal:
-        return BAIL  # an ethereal obstruction is reported through the collision objects
+    if ethereal:  # an ethereal obstruction is reported through the collision objects
+        return bail(tr, R_ETHEREAL)
     if state & PS_MISSILE:  # OBJECTINFO::missile_ignore: a missile obstacle is passed through
         return OK
     if not tr.step_down and out_of_reach(bodies, tr, j):
         return OK
     for s in range(other.num_sphere):
         if not sphere_answers_ok(bodies, tr, j, s, False):
-            return BAIL
+            return bail(tr, R_REACH)
     return OK
 
 
@@ -569,7 +579,7 @@ def find_obj_collisions(w, tr, k):
     bodies, cells, shadow_pool, heads, grid = w[0], w[1], w[3], w[4], w[5]
     cell = cells[k]
     if cell.num_others:
-        return BAIL  # a static object's shapes are the reference's
+        return bail(tr, R_STATIC)  # a static object's shapes are the reference's
     x0, y0 = block_origin(tr.check_cell_id)
     reach = grid[MAX_REACH]
     low_x = low_y = math.inf
@@ -609,7 +619,7 @@ def find_collisions(w, tr, k):
     Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
     """
     if w[1][k].uncovered:
-        return BAIL
+        return bail(tr, R_CELL)
     result = find_env_collisions(w, tr, k)
     if result == OK:
         result = find_obj_collisions(w, tr, k)
@@ -649,15 +659,16 @@ def find_cell_list(w, tr, want_cell):
     cells, landblock_index = w[1], w[2]
     cell_array_clear(tr)
     cell_id = tr.check_cell_id
-    if (cell_id & 0xFFFF) >= 0x100:
-        return -2
-    if not add_all_outside_cells(tr, landblock_index, cell_id):
+    if (cell_id & 0xFFFF) >= 0x100 or not add_all_outside_cells(tr, landblock_index, cell_id):
+        tr.bail = R_CELL
         return -2
     for i in range(tr.num_cells):
         k = tr.cells[i]
         if k < 0 or cells[k].uncovered:
+            tr.bail = R_CELL
             return -2
     if cell_index(landblock_index, cell_id) < 0:
+        tr.bail = R_CELL
         return -2
     curr = -1
     if want_cell:
@@ -705,7 +716,7 @@ def check_other_cells(w, tr, curr_cell):
         return ts
     if tr.step_down:
         return COLLIDED
-    return BAIL  # no cell holds sphere 0's centre: a candidate leaving the known cells is the reference's
+    return bail(tr, R_NO_CELL)  # no cell holds sphere 0's centre: leaving the known cells
 
 
 @njit(cache=True)
@@ -851,7 +862,7 @@ def step_down(w, tr, step_down_ht, z_val, deeper):
     if not (ts == OK and tr.contact_plane_valid and tr.contact_n[2] >= z_val):
         return 0
     if tr.oi_state & OI_EDGE_SLIDE and not tr.step_up and tr.walkable:
-        return BAIL  # check_walkable against a recorded walkable polygon
+        return bail(tr, R_SHAPES)  # check_walkable against a recorded walkable polygon
     tr.backup = tr.insert_type
     tr.insert_type = IT_PLACEMENT
     ts = deeper(w, tr, 1)
@@ -885,7 +896,7 @@ def edge_slide(w, tr, ts, step_down_ht, z_val, deeper):
         tr.contact_plane_is_water = False
         return False, ts
     if tr.walkable:
-        return True, BAIL
+        return True, bail(tr, R_SHAPES)
     if tr.contact_plane_valid:
         tr.walkable = False
         restore_check_pos(tr)
@@ -905,7 +916,7 @@ def edge_slide(w, tr, ts, step_down_ht, z_val, deeper):
     tr.contact_plane_is_water = False
     restore_check_pos(tr)
     if tr.walkable:
-        return True, BAIL
+        return True, bail(tr, R_SHAPES)
     tr.walkable = False
     tr.cell_array_valid = True
     return True, COLLIDED
@@ -947,7 +958,7 @@ def transitional_insert_body(w, tr, attempts, deeper):
         if ts != OK:
             continue
         if tr.collide or tr.neg_poly_hit:
-            return BAIL
+            return bail(tr, R_SHAPES)
         if tr.contact_plane_valid:
             return OK
         state = tr.oi_state
@@ -984,7 +995,7 @@ def transitional_insert_body(w, tr, attempts, deeper):
 @njit(cache=True)
 def _insert_too_deep(w, tr, attempts):
     """Below the deepest compiled level: the reference path nests further."""
-    return BAIL
+    return bail(tr, R_DEEP)
 
 
 @njit(cache=True)

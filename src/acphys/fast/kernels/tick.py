@@ -29,7 +29,7 @@ from acphys.constants import (
     MIN_QUANTUM,
     SMALL_VELOCITY,
 )
-from acphys.fast.kernels.cells import BAIL
+from acphys.fast.kernels.cells import BAIL, R_FULL, R_MOTION, R_NO_CELL, bail
 from acphys.fast.kernels.frame import (
     f32,
     frame_combine,
@@ -91,7 +91,8 @@ LOGGED = 1  # rows in the trace log
 MOVES = 2  # rows in the cell-move log
 JOURNAL = 3  # rows in the undo journal
 GROW_CELL = 4
-NUM_COUNTERS = 5
+REASON = 5  # why the last body handed its update back (acphys.fast.kernels.cells.BAIL_REASONS)
+NUM_COUNTERS = 6
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
@@ -501,13 +502,13 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
     prev_on_walkable = b.transient & TS_ON_WALKABLE
     prev_contact = b.transient & TS_CONTACT
     if tr.curr_cell < 0:
-        return BAIL, events
+        return bail(tr, R_NO_CELL), events
     if b.cell == tr.curr_cell:
         b.cell_id = tr.curr_cell_id
     else:
         n = counters[MOVES]
         if n >= moves.shape[0]:
-            return BAIL, events
+            return bail(tr, R_FULL), events
         moves[n, 0] = i
         moves[n, 1] = b.cell
         moves[n, 2] = tr.curr_cell
@@ -530,13 +531,13 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
     if b.transient & TS_CONTACT:
         status, events = set_on_walkable(b, b.contact_n[2] >= FLOOR_Z, events)
         if status == BAIL:
-            return BAIL, events
+            return bail(tr, R_MOTION), events
     else:
         was = b.transient & TS_ON_WALKABLE
         b.transient &= ~TS_ON_WALKABLE
         if was:
             if b.has_movement_manager:
-                return BAIL, events
+                return bail(tr, R_MOTION), events
             events |= EVENT_LEAVE_GROUND
         calc_acceleration(b)
     b.sliding_normal[:] = tr.sliding_normal
@@ -547,10 +548,10 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
     events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
     if tr.num_cells:
         if not remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
-            return BAIL, events
+            return bail(tr, R_FULL), events
         full = add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters)
         if full == -2:
-            return BAIL, events
+            return bail(tr, R_FULL), events
         if full >= 0:
             counters[GROW_CELL] = full
             return GROW, events
@@ -718,8 +719,10 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, tr_arra
         saved_tr[0] = tr
         logged, moved, steps, physics_time = counters[LOGGED], counters[MOVES], counters[STEPS], clock[1]
         counters[JOURNAL] = 0
+        tr.bail = 0
         status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal)
         if status != 0:
+            counters[REASON] = tr.bail
             _undo(bodies, cells, shadow_pool, journal, counters)
             bodies[i] = saved[0]
             tr_array[0] = saved_tr[0]

@@ -1,7 +1,11 @@
 """Which bodies the kernel may step: those whose state outside their record is idle.
 
 A body's record (:data:`acphys.fast.layout.BODY`) holds what a step of a body reads and writes
-while nothing else about the body is going on. :func:`uncovered_reason` names the first thing
+while nothing else about the body is going on: no manager at work but the movement manager's
+motion interpreter (which only acts when the body lands, leaves the ground or an animation
+ends: the kernel hands those steps back) and the motion table's manager with no motion to
+complete, no hooks waiting, a sequence the kernel can play (:func:`acphys.fast.kernels.sequence.
+load_sequence`). :func:`uncovered_reason` names the first thing
 that is going on (a manager at work, a hook waiting, a shape the kernel does not sweep, ...);
 such a body runs on the reference path until it is idle again. The kernel itself hands a step
 back when it meets something it does not cover mid-step (see :mod:`acphys.fast.kernels.tick`).
@@ -38,20 +42,22 @@ def uncovered_reason(
     if body.state & _UNCOVERED_STATES or body.transient_state & TransientState.CHECK_ETHEREAL:
         return "state"
     managers = (
-        body.movement_manager,
         body.position_manager,
         body.detection_manager,
         body.target_manager,
         body.particle_manager,
         body.script_manager,
-        parts.motion_table_manager,
     )
     if any(manager is not None for manager in managers):
         return "managers"
-    if parts.sequence.anim_list:
-        return "animation"
-    if body.hooks or body.anim_hooks or body.step_events:
-        return "hooks or events waiting"
+    movement = body.movement_manager
+    if movement is not None and movement.moveto_manager is not None:
+        return "a move-to manager"
+    table = parts.motion_table_manager
+    if table is not None and table.pending_animations and not table.pending_animations[0].num_anims:
+        return "a motion waiting to complete"
+    if body.hooks or body.anim_hooks:
+        return "hooks waiting"
     if body.weenie_obj is not None or body.on_collision is not None:
         return "a weenie or a collision callback"
     if body.collision_table is not None and body.collision_table.ids():

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from acphys.constants import MIN_QUANTUM
+from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
@@ -77,6 +78,7 @@ class FastPhysics(Physics):
         self._index: dict[int, int] = {}
         #: Why each body is not covered ("" when it is): the first uncovered_reason.
         self._uncovered: list[str] = []
+        self._animations = AnimationTable()
         self._grid_heads = np.full(grid.BUCKETS, -1, dtype=np.int32)
         self._grid = np.zeros(1, dtype=np.float64)
         #: True once the objects may have changed behind the records (a flush, a new body).
@@ -111,6 +113,9 @@ class FastPhysics(Physics):
             reason = uncovered_reason(body, arrays.cell_index, observer)
         record = self._records[i]
         load_body(record, body, cell, reason is None)
+        if body.part_array is not None and not self._animations.load(record, body.part_array.sequence):
+            reason = reason or "a sequence the kernel cannot play"
+            record["covered"] = False
         self._uncovered[i] = reason or ""
         shadows = body.shadow_objects[: record["shadow_cell"].size]
         record["num_shadow"] = len(shadows)
@@ -166,6 +171,9 @@ class FastPhysics(Physics):
                 arrays.shadow_pool,
                 self._grid_heads,
                 self._grid,
+                self._animations.anims,
+                self._animations.pos_frames,
+                self._animations.hooks,
                 self._transition,
                 self._clock,
                 start,
@@ -270,6 +278,9 @@ class FastPhysics(Physics):
             record = self._records[i]
             body = self._bodies[i]
             store_body(record, body)
+            if body.part_array is not None:
+                self._animations.store(record, body.part_array.sequence)
+                body.part_array.update_parts(body.position.frame)
             body.position.objcell_id = int(record["cell_id"])
             if body.part_array is not None:
                 for part in body.part_array.parts:
@@ -334,8 +345,11 @@ class FastPhysics(Physics):
         values = row.tolist()
         body = self._bodies[int(values[0])]
         transient = TransientState(int(values[20]))
-        events = []
         bits = int(values[24])
+        events = []
+        if bits & kernels.EVENT_PENDING:
+            events = list(body.step_events)
+            body.step_events.clear()
         if bits & kernels.EVENT_HIT_GROUND:
             events.append("hit_ground")
         if bits & kernels.EVENT_LEAVE_GROUND:

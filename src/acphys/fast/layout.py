@@ -53,6 +53,7 @@ BODY = np.dtype(
         ("contact_cell_id", "u4"),
         ("sliding_normal", "f8", 3),
         ("jumped_this_frame", "u1"),
+        ("step_events", "u1"),  # the object holds events for the next step's record (step_events)
         ("has_parent", "u1"),
         ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
@@ -63,6 +64,7 @@ BODY = np.dtype(
         ("sphere", "f8", (MAX_SPHERES, 4)),  # centre x, y, z and radius, unscaled
         ("step_up_height", "f8"),
         ("step_down_height", "f8"),
+        ("free_heading", "u1"),  # the setup allows a free heading (the sweep takes FREE_ROTATE)
         # -- the shadows (CPhysicsObj::shadow_objects), in order --------------------------------
         ("num_shadow", "i1"),
         ("shadows_moved", "u1"),  # the kernel cast the shadows again since the object was written

@@ -54,6 +54,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["contact_cell_id"] = body.contact_plane_cell_id
     record["sliding_normal"] = _vec(body.sliding_normal)
     record["jumped_this_frame"] = body.jumped_this_frame
+    record["step_events"] = bool(body.step_events)
     record["colliding_with_environment"] = body.colliding_with_environment
     record["has_movement_manager"] = body.movement_manager is not None
     record["has_parent"] = body.parent is not None
@@ -77,10 +78,12 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     if parts is not None:
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height
+        record["free_heading"] = parts.allows_free_heading()
 
 
 def store_body(record: np.void, body: PhysicsObj) -> None:
-    """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell or shadows)."""
+    """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell, shadows or
+    sequence, which the engine hands back, nor its parts, which follow its sequence)."""
     body.state = PhysicsState(int(record["state"]))
     body.transient_state = TransientState(int(record["transient"]))
     body.update_time = float(record["update_time"])
@@ -98,6 +101,8 @@ def store_body(record: np.void, body: PhysicsObj) -> None:
     body.contact_plane_cell_id = int(record["contact_cell_id"])
     body.sliding_normal = _vector(record["sliding_normal"])
     body.jumped_this_frame = bool(record["jumped_this_frame"])
+    if not record["step_events"]:
+        body.step_events.clear()  # the kernel's step recorded them
     body.colliding_with_environment = bool(record["colliding_with_environment"])
     if body.part_array is not None:
         body.part_array.update_parts(frame)

@@ -18,6 +18,9 @@ Data, all plain tuples of float64 (no objects):
   new rotation is invalid (and re-caches only on success): the caller stores both, with no
   ``frame_cache`` of its own.
 * Cell ids and lcoords are integers (taken as int64).
+* Every float argument must be a float64 (Python floats, or read out of an array with
+  ``np.float64``): Numba multiplies two float32 values in float32, where retail and the reference
+  compute in double. Each function then stays in float64 throughout (:func:`f32` returns float64).
 """
 
 from __future__ import annotations

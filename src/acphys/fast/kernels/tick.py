@@ -29,19 +29,19 @@ from acphys.constants import (
     MIN_QUANTUM,
     SMALL_VELOCITY,
 )
-from acphys.fast.kernels.cells import BAIL, R_FULL, R_MOTION, R_NO_CELL, bail
+from acphys.fast.kernels.cells import BAIL, R_FULL, R_HOOK, R_MOTION, R_NO_CELL, bail
 from acphys.fast.kernels.frame import (
     f32,
     frame_combine,
     frame_grotate,
     frame_is_valid,
     frame_is_valid_except_for_heading,
-    frame_rotate,
     position_get_offset,
     v_length,
     v_normalized,
 )
 from acphys.fast.kernels.grid import grid_place
+from acphys.fast.kernels.sequence import STATUS_DONE, sequence_update
 from acphys.fast.kernels.sweep import (
     cache_global_curr_center,
     find_transitional_position,
@@ -78,6 +78,7 @@ OI_CONTACT = int(ObjectInfoState.CONTACT)
 OI_ON_WALKABLE = int(ObjectInfoState.ON_WALKABLE)
 OI_EDGE_SLIDE = int(ObjectInfoState.EDGE_SLIDE)
 OI_PATH_CLIPPED = int(ObjectInfoState.PATH_CLIPPED)
+OI_FREE_ROTATE = int(ObjectInfoState.FREE_ROTATE)
 
 # What run_bodies returns with the index it stopped at.
 DONE = 0  # every body from the start index on was updated
@@ -100,6 +101,8 @@ LOG_WIDTH = 25
 EVENT_HIT_GROUND = 1
 EVENT_LEAVE_GROUND = 2
 EVENT_COLLISION_ENVIRONMENT = 4
+#: The record's events begin with what the object held before the step (its ``step_events``).
+EVENT_PENDING = 8
 #: The most steps one update takes: HUGE_QUANTUM / MAX_QUANTUM quanta (and a remainder).
 MAX_STEPS_PER_UPDATE = 11
 JOURNAL_ROWS = 4096
@@ -333,26 +336,24 @@ def update_physics_internal(b, quantum, origin, q, m):
 
 
 @njit(cache=True)
-def update_position_internal(b, quantum):
-    """The candidate frame: root motion, scaled on walkable ground, combined onto the body's frame,
-    then integrated. (A covered body plays no animation: the sequence's velocity and omega apply
-    for the whole quantum, ``CSequence::apply_physics``.)
+def update_position_internal(w, b, quantum):
+    """The candidate frame: root motion (the sequence played into an offset frame), scaled on
+    walkable ground, combined onto the body's frame, then integrated. ``(status, origin, q, m)``:
+    status 1 when the sequence would queue a hook (the reference path plays it).
 
-    Port of :meth:`acphys.physics_obj.PhysicsObj.update_position_internal`.
-    Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988)
+    Port of :meth:`acphys.physics_obj.PhysicsObj.update_position_internal` and
+    :meth:`acphys.part_array.PartArray.update`.
+    Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988),
+    CPartArray::Update @ 0x00517DB0 (acclient.c:325139)
     """
     identity_m = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     o = (0.0, 0.0, 0.0)
     oq = (1.0, 0.0, 0.0, 0.0)
     om = identity_m
     if not b.state & PS_HIDDEN:
-        step = abs(quantum)
-        sv = b.seq_velocity
-        dy, dz = f32(step * sv[1]), f32(step * sv[2])
-        o = (f32(step * sv[0] + o[0]), f32(dy + o[1]), f32(dz + o[2]))
-        w = b.seq_omega
-        if w[0] != 0.0 or w[1] != 0.0 or w[2] != 0.0:
-            oq, om = frame_rotate(o, oq, om, (f32(step * w[0]), f32(step * w[1]), f32(step * w[2])))
+        status, o, oq, om = sequence_update(b, w[6], w[7], w[8], quantum, o, oq, om)
+        if status != STATUS_DONE:
+            return status, o, oq, om
         factor = b.scale if b.transient & TS_ON_WALKABLE else 0.0
         o = (f32(o[0] * factor), f32(o[1] * factor), f32(o[2] * factor))
     origin, q, m = frame_combine(
@@ -360,7 +361,7 @@ def update_position_internal(b, quantum):
     )
     if not b.state & PS_HIDDEN:
         origin, q, m = update_physics_internal(b, quantum, origin, q, m)
-    return origin, q, m
+    return STATUS_DONE, origin, q, m
 
 
 # -- the sweep and the commit ----------------------------------------------------------------------
@@ -399,6 +400,8 @@ def transition(w, tr, i, origin, q, m):
         tr.contact_plane_cell_id = b.contact_cell_id
     if ts & TS_SLIDING:
         set_sliding_normal(tr, b.sliding_normal[0], b.sliding_normal[1])
+    if b.free_heading:
+        state |= OI_FREE_ROTATE
     if b.state & PS_MISSILE:
         state |= OI_PATH_CLIPPED
     tr.oi_body = i
@@ -574,7 +577,9 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal):
     if b.cell < 0:
         return 0, events
     b.jumped_this_frame = False
-    origin, q, m = update_position_internal(b, quantum)
+    status, origin, q, m = update_position_internal(w, b, quantum)
+    if status != STATUS_DONE:
+        return bail(tr, R_HOOK), events
     if (
         abs(origin[0] - b.origin[0]) <= EPSILON
         and abs(origin[1] - b.origin[1]) <= EPSILON
@@ -634,8 +639,12 @@ def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journa
     if status != 0:
         return status
     counters[STEPS] += 1
+    b = w[0][i]
+    if b.step_events:
+        events |= EVENT_PENDING
+        b.step_events = False
     if tracing:
-        _log_step(log, counters, w[0][i], i, clock[1], step, events)
+        _log_step(log, counters, b, i, clock[1], step, events)
     return 0
 
 
@@ -690,8 +699,8 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
 
 
 @njit(cache=True)
-def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, tr_array, clock, start, tracing,
-               log, moves, counters, journal):
+def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks, tr_array,
+               clock, start, tracing, log, moves, counters, journal):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
@@ -702,7 +711,7 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, tr_arra
     Port of :meth:`acphys.simulation.Physics.use_time`'s walk.
     Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
     """
-    w = (bodies, cells, landblock_index, shadow_pool, heads, grid)
+    w = (bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks)
     tr = tr_array[0]
     saved_tr = tr_array.copy()
     saved = bodies[:1].copy()

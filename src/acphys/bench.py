@@ -1,15 +1,22 @@
-"""The performance suite behind ``acphys bench``: rates, and ratios against a baseline run alongside.
+"""The performance suite behind ``acphys bench``: rates, and ratios against baselines run alongside.
 
-Each workload runs a scenario-sized population of bodies through the real
-tick and reports how many body-steps (one ``update_object_internal`` each)
-it manages per second. Two reference figures come from the same run, so
-results compare across machines:
+Each workload builds a population of bodies and runs it through the real tick on one engine, or
+on both (``engine="both"``), reporting how many body-steps (one ``update_object_internal`` each)
+the engine manages per second of stepping. Figures measured in the same run put it in
+proportion, so results compare across machines:
 
-- ``baseline``: a fixed pure-Python loop doing the arithmetic of one free-fall
-  Euler step, the speed of the interpreter itself; every workload's
-  ``vs_baseline`` is its rate over the baseline's.
-- ``landblock``: the rate a whole landblock needs in real time, 100 bodies at
-  30 Hz (3,000 body-steps per second); ``vs_realtime`` is the rate over that.
+- ``baseline``: a fixed pure-Python loop doing the arithmetic of one free-fall Euler step, the
+  speed of the interpreter itself; every workload's ``vs_baseline`` is its rate over the
+  baseline's.
+- ``landblock``: the rate a whole landblock needs in real time, 100 bodies at 30 Hz (3,000
+  body-steps per second); ``vs_realtime`` is the rate over that.
+- with both engines, the fast engine's row has ``fast_vs_reference``: its rate over the reference
+  engine's on the same workload, bodies and duration.
+
+The fast engine's rows also give the time its compiled kernels took to load (or compile, the
+first time) apart from the stepping (``compile_seconds``), the share of body-steps that ran on the
+reference path and why (``fallback_share``, ``fallback_reasons``), and the bytes of kernel arrays
+per body (``memory_per_body``). Building a workload is timed apart too (``build_seconds``).
 
 Nothing here asserts a time: the figures are reported, never checked.
 """
@@ -19,26 +26,37 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
+from typing import Any
 
-from acphys.scenario import parse_scenario
+from acphys.scenario import build_scenario, parse_scenario
 from acphys.simulation import Simulation
 
 #: Body-steps per second a landblock of 100 bodies needs at 30 Hz.
 LANDBLOCK_RATE = 100 * 30.0
+#: What ``engine`` may be: one engine, or both in turn.
+ENGINE_CHOICES = ("reference", "fast", "both")
 
 
 @dataclass
 class BenchResult:
-    """One workload's figures."""
+    """One workload's figures on one engine."""
 
-    name: str
+    workload: str
+    engine: str
     description: str
+    bodies: int
     body_steps: int
     seconds: float
-    rate: float
+    steps_per_s: float
     vs_baseline: float
     vs_realtime: float
+    build_seconds: float = 0.0
+    compile_seconds: float | None = None
+    fallback_share: float | None = None
+    fallback_reasons: dict[str, int] = field(default_factory=dict)
+    memory_per_body: float | None = None
+    fast_vs_reference: float | None = None
 
     def as_dict(self) -> dict[str, object]:
         return asdict(self)
@@ -76,8 +94,9 @@ def _population(count: int, body: Callable[[int], str], events: Callable[[int], 
     )
 
 
-def _walkers(count: int, seconds: float) -> Simulation:
-    """Humans with the humanoid table, half walking, half running, on flat ground."""
+def _walkers(count: int, seconds: float, engine: str = "reference") -> Simulation:
+    """Humans with the humanoid table, half walking, half running, on flat ground (ten columns
+    15 m apart, rows over 150 m: past a few hundred they stand in each other)."""
 
     def body(i: int) -> str:
         return f'[[body]]\nname = "w{i}"\nlandblock = "0xA9B4"\non_ground = true\n'
@@ -89,10 +108,11 @@ def _walkers(count: int, seconds: float) -> Simulation:
             f'motion = "WalkForward"\nhold_run = {run}\n'
         )
 
-    return parse_scenario(_population(count, body, events, seconds), source="<bench walkers>")
+    text = _population(count, body, events, seconds)
+    return parse_scenario(text, source="<bench walkers>", engine=engine)
 
 
-def _fallers(count: int, seconds: float) -> Simulation:
+def _fallers(count: int, seconds: float, engine: str = "reference") -> Simulation:
     """Balls thrown upwards with no motion table: integration and the sweep, no animation."""
 
     def body(i: int) -> str:
@@ -107,10 +127,10 @@ def _fallers(count: int, seconds: float) -> Simulation:
         "[setup.ball]\nspheres = [{ center = [0, 0, 0.1], radius = 0.1 }]\n\n[[landblock]]",
         1,
     )
-    return parse_scenario(text, source="<bench fallers>")
+    return parse_scenario(text, source="<bench fallers>", engine=engine)
 
 
-def _crowd(count: int, seconds: float) -> Simulation:
+def _crowd(count: int, seconds: float, engine: str = "reference") -> Simulation:
     """Humans 1.5 m apart in a square, columns facing north and east by turns, walking through each
     other's paths: every sweep meets the shadows of its neighbours (the object-object checks)."""
     side = max(1, math.ceil(math.sqrt(count)))
@@ -131,17 +151,137 @@ def _crowd(count: int, seconds: float) -> Simulation:
         + "".join(body(i) for i in range(count))
         + "".join(event(i) for i in range(count))
     )
-    return parse_scenario(text, source="<bench crowd>")
+    return parse_scenario(text, source="<bench crowd>", engine=engine)
 
 
-WORKLOADS: dict[str, tuple[str, Callable[[int, float], Simulation]]] = {
+#: How far apart the hills workload's walkers stand, in metres: their circles (about 4 m across
+#: walking, 5.3 m running) never meet.
+HILLS_SPACING = 8.0
+#: Walkers a side of a landblock in the hills workload (23 × 23 = 529 a landblock, 6 m from its edges).
+HILLS_PER_BLOCK_SIDE = 23
+
+
+def _hill_heights(bx: int, by: int) -> list[int]:
+    """Height bytes of rolling hills, continuous across landblock seams (slopes up to about 14°)."""
+    heights = []
+    for x in range(9):
+        for y in range(9):
+            gx, gy = 8 * bx + x, 8 * by + y
+            wave = 4.0 * math.sin(gx * 0.7) + 3.0 * math.cos(gy * 0.55) + 2.0 * math.sin((gx + gy) * 0.3)
+            heights.append(round(40.0 + wave))
+    return heights
+
+
+def _hills(count: int, seconds: float, engine: str = "reference") -> Simulation:
+    """Humans walking and running in circles (a turn held with the walk) over rolling hills, 8 m
+    apart, over as many landblocks as they need (529 a landblock); their circles never meet, so they
+    walk on their own for as long as they run. Built from Python values (``build_scenario``), as a
+    server would make its population."""
+    blocks = max(1, math.ceil(count / HILLS_PER_BLOCK_SIDE**2))
+    side = math.ceil(math.sqrt(blocks))
+    landblocks = [
+        {"id": f"0x{0x80 + bx:02X}{0x80 + by:02X}", "heights": _hill_heights(bx, by)}
+        for bx in range(side)
+        for by in range(side)
+    ][:blocks]
+    bodies = []
+    events: list[dict[str, Any]] = []
+    for i in range(count):
+        block, slot = divmod(i, HILLS_PER_BLOCK_SIDE**2)
+        row, column = divmod(slot, HILLS_PER_BLOCK_SIDE)
+        x, y = 6.0 + HILLS_SPACING * column, 6.0 + HILLS_SPACING * row
+        name = f"h{i}"
+        bodies.append(
+            {
+                "name": name,
+                "landblock": landblocks[block]["id"],
+                "origin": [x, y, 0.0],  # under the hills: placement lifts it onto them
+                "heading": float((i * 47) % 360),
+                "on_ground": True,
+            }
+        )
+        walk = {"at": 0.0, "body": name, "action": "motion", "motion": "WalkForward", "hold_run": i % 2 == 1}
+        events.append(walk)
+        events.append({"at": 0.0, "body": name, "action": "motion", "motion": "TurnRight"})
+    document = {
+        "scenario": {"name": "bench-hills", "duration": seconds, "driver_hz": 30.0},
+        "landblock": landblocks,
+        "body": bodies,
+        "event": events,
+    }
+    return build_scenario(document, source="<bench hills>", engine=engine)
+
+
+def _mixed(count: int, seconds: float, engine: str = "reference") -> Simulation:
+    """A flat landblock of everything at once: walkers and runners, balls thrown about, a crowd
+    walking through itself, pillars, and a house some walkers walk into. What the fast engine
+    does not cover runs on the reference path; its rows report the share."""
+    count = max(8, count)
+    side = max(1, math.ceil(math.sqrt(count // 4)))
+    text = [
+        f'[scenario]\nname = "bench-mixed"\nduration = {seconds}\ndriver_hz = 30.0\n',
+        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n',
+        "[setup.ball]\nspheres = [{ center = [0, 0, 0.15], radius = 0.15 }]\n",
+        "[setup.pillar]\ncylspheres = [{ low_pt = [0, 0, 0], radius = 0.8, height = 4.0 }]\n",
+        '[[building]]\nlandblock = "0xA9B4"\norigin = [156.0, 156.0, 50.0]\nrooms = [\n'
+        '    { name = "hall", min = [-6, -4, 0], max = [0, 4, 3] },\n'
+        '    { name = "parlour", min = [0, -4, 0], max = [6, 4, 3] },\n]\n'
+        "doorways = [\n"
+        '    { between = ["hall", "outside"], min = [-6, -0.6, 0], max = [-6, 0.6, 2.2] },\n'
+        '    { between = ["hall", "parlour"], min = [0, -0.6, 0], max = [0, 0.6, 2.2] },\n]\n',
+    ]
+    for n, (x, y) in enumerate(((40.0, 150.0), (100.0, 40.0), (130.0, 110.0))):
+        text.append(f'[[object]]\nname = "pillar-{n}"\nsetup = "pillar"\nlandblock = "0xA9B4"\n')
+        text.append(f"origin = [{x}, {y}, 50.0]\n")
+    events = []
+    for i in range(count):
+        n = i // 4
+        name = f"m{i}"
+        body = f'[[body]]\nname = "{name}"\nlandblock = "0xA9B4"\n'
+        walk = f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "WalkForward"\n'
+        if i % 4 == 0:  # walkers and runners
+            x, y = 10.0 + 6.0 * (n % 18), 10.0 + 6.0 * (n // 18 % 18)
+            body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = {(i * 37) % 360}\n"
+            events.append(walk + f"hold_run = {'true' if n % 2 else 'false'}\n")
+        elif i % 4 == 1:  # balls thrown about
+            x, y = 20.0 + 7.0 * (n % 18), 60.0 + 7.0 * (n // 18 % 14)
+            vx, vy = 3.0 * math.sin(i), 3.0 * math.cos(i)
+            body += (
+                f'setup = "ball"\norigin = [{x:.2f}, {y:.2f}, 60.0]\n'
+                f'state = ["gravity", "report_collisions"]\nvelocity = [{vx:.2f}, {vy:.2f}, {4.0 + i % 5}]\n'
+            )
+        elif i % 4 == 2:  # a crowd walking through itself
+            row, column = divmod(n, side)
+            body += (
+                f"origin = [{120.0 + 1.5 * column}, {20.0 + 1.5 * row}, 50.0]\non_ground = true\n"
+                f"heading = {90.0 * (column % 2)}\n"
+            )
+            events.append(walk)
+        else:  # walkers heading for the house
+            x, y = 130.0 + (n % 5) * 2.0, 150.0 + (n // 5 % 5) * 2.5
+            body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = 90.0\n"
+            events.append(walk)
+        text.append(body)
+    return parse_scenario("".join(text) + "".join(events), source="<bench mixed>", engine=engine)
+
+
+Build = Callable[..., Simulation]
+
+WORKLOADS: dict[str, tuple[str, Build]] = {
     "walkers": ("humans walking and running: animation root motion, motion tables, the sweep", _walkers),
     "fallers": ("balls in flight and landing: Euler integration and the sweep", _fallers),
     "crowd": ("humans walking into each other 1.5 m apart: the object-object checks", _crowd),
+    "hills": ("humans walking and running in circles over rolling hills, 8 m apart, 529 a landblock", _hills),
+    "mixed": ("a landblock of walkers, thrown balls, a crowd, pillars and a house", _mixed),
 }
 
 
-def _measure(sim: Simulation) -> tuple[int, float]:
+def _count_steps(sim: Simulation) -> Callable[[], int]:
+    """A counter of the body-steps ``sim`` takes from now on."""
+    counts = getattr(sim.physics, "counts", None)
+    if counts is not None:
+        start = counts.kernel + counts.reference
+        return lambda: counts.kernel + counts.reference - start
     steps = 0
 
     def count(_body: object, _quantum: float) -> None:
@@ -150,21 +290,79 @@ def _measure(sim: Simulation) -> tuple[int, float]:
 
     for body in sim.bodies:
         body.observer = count
+    return lambda: steps
+
+
+def _warm_up(workload: str) -> float:
+    """The seconds the fast engine's kernels take to be ready (loaded from Numba's cache, or
+    compiled the first time): a tiny run of ``workload``."""
+    start = time.perf_counter()
+    WORKLOADS[workload][1](2, 0.2, "fast").run()
+    return time.perf_counter() - start
+
+
+def run_workload(
+    workload: str, engine: str, bodies: int, seconds: float, base_rate: float
+) -> BenchResult:
+    """One workload on one engine (``reference`` or ``fast``)."""
+    description, build = WORKLOADS[workload]
+    compile_seconds = _warm_up(workload) if engine == "fast" else None
+    start = time.perf_counter()
+    sim = build(bodies, seconds, engine)
+    build_seconds = time.perf_counter() - start
+    steps = _count_steps(sim)
     start = time.perf_counter()
     sim.run()
-    return steps, time.perf_counter() - start
+    elapsed = time.perf_counter() - start
+    taken = steps()
+    rate = taken / elapsed if elapsed > 0.0 else 0.0
+    result = BenchResult(
+        workload,
+        engine,
+        description,
+        bodies,
+        taken,
+        elapsed,
+        rate,
+        rate / base_rate,
+        rate / LANDBLOCK_RATE,
+        build_seconds=build_seconds,
+    )
+    physics: Any = sim.physics
+    if engine == "fast":
+        counts = physics.counts
+        result.compile_seconds = compile_seconds
+        result.fallback_share = counts.reference_share
+        result.fallback_reasons = dict(sorted(counts.reasons.items(), key=lambda item: -item[1]))
+        result.memory_per_body = physics.array_bytes() / max(1, bodies)
+    return result
 
 
-def run_suite(bodies: int = 100, seconds: float = 5.0) -> list[BenchResult]:
-    """Run the baseline and every workload with ``bodies`` bodies for ``seconds`` of simulated time."""
+def run_suite(
+    bodies: int = 100,
+    seconds: float = 5.0,
+    engine: str = "reference",
+    workloads: list[str] | None = None,
+) -> list[BenchResult]:
+    """The baseline, then every workload (or those named) with ``bodies`` bodies for ``seconds``
+    of simulated time on ``engine`` (``"reference"``, ``"fast"`` or ``"both"``)."""
     if bodies < 1 or not seconds > 0.0:
         raise ValueError(f"bench needs at least one body and a positive duration, got {bodies}, {seconds}")
-    base_steps, base_seconds = _baseline(max(1, int(bodies * seconds * 30.0 * 10)))
+    if engine not in ENGINE_CHOICES:
+        raise ValueError(f"engine must be one of {', '.join(ENGINE_CHOICES)}, got {engine!r}")
+    names = list(WORKLOADS) if workloads is None else workloads
+    unknown = [name for name in names if name not in WORKLOADS]
+    if unknown:
+        raise ValueError(f"no workload {unknown[0]!r} (workloads: {', '.join(WORKLOADS)})")
+    engines = ["reference", "fast"] if engine == "both" else [engine]
+    base_steps, base_seconds = _baseline(max(1, min(3_000_000, int(bodies * seconds * 30.0 * 10))))
     base_rate = base_steps / base_seconds
     results = [
         BenchResult(
             "baseline",
+            "python",
             "a plain-float free-fall Euler step (the interpreter's speed)",
+            0,
             base_steps,
             base_seconds,
             base_rate,
@@ -172,10 +370,9 @@ def run_suite(bodies: int = 100, seconds: float = 5.0) -> list[BenchResult]:
             base_rate / LANDBLOCK_RATE,
         )
     ]
-    for name, (description, build) in WORKLOADS.items():
-        steps, elapsed = _measure(build(bodies, seconds))
-        rate = steps / elapsed
-        results.append(
-            BenchResult(name, description, steps, elapsed, rate, rate / base_rate, rate / LANDBLOCK_RATE)
-        )
+    for name in names:
+        rows = [run_workload(name, each, bodies, seconds, base_rate) for each in engines]
+        if len(rows) == 2 and rows[0].steps_per_s > 0.0:
+            rows[1].fast_vs_reference = rows[1].steps_per_s / rows[0].steps_per_s
+        results.extend(rows)
     return results

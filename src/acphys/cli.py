@@ -20,7 +20,7 @@ from rich.table import Table
 from rich.text import Text
 
 from acphys import __version__
-from acphys.bench import run_suite
+from acphys.bench import ENGINE_CHOICES, WORKLOADS, run_suite
 from acphys.dat import REGION_ID, DatError, DatFile, unpack_region, unpack_setup
 from acphys.flags import TransientState, flag_names
 from acphys.inputs import InputError, one_line
@@ -51,6 +51,9 @@ PROGRESS_TICKS = 20_000
 MAX_BENCH_BODIES = 100_000
 MAX_BENCH_SECONDS = 3600.0
 MAX_BENCH_BODY_SECONDS = 100_000
+#: The fast engine alone steps some hundred times faster: 10 million body-seconds (100,000 bodies
+#: for 100 s) take minutes.
+MAX_FAST_BENCH_BODY_SECONDS = 10_000_000
 
 EXIT_DIVERGED = 1
 EXIT_BAD_INPUT = 2
@@ -106,6 +109,12 @@ def _build_parser() -> argparse.ArgumentParser:
     bench = commands.add_parser("bench", help="the performance suite: rates and ratios to a baseline")
     bench.add_argument("--bodies", type=int, default=100, help="bodies per workload (default 100)")
     bench.add_argument("--seconds", type=float, default=5.0, help="simulated seconds (default 5)")
+    bench.add_argument(
+        "--engine", choices=ENGINE_CHOICES, default="both", help="which engine to measure (default both)"
+    )
+    bench.add_argument(
+        "--workload", action="append", choices=list(WORKLOADS), help="only this workload (repeatable)"
+    )
     bench.add_argument("--json", metavar="FILE", help="also write the figures as JSON")
 
     dat = commands.add_parser("dat", help="read the user's retail DAT files")
@@ -163,7 +172,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command == "view":
             return _view(console, args.trace, args.bodies)
         if args.command == "bench":
-            return _bench(console, args.bodies, args.seconds, args.json)
+            return _bench(console, args.bodies, args.seconds, args.engine, args.workload, args.json)
         if args.command == "dat":
             return _dat(console, args)
         return _diff(console, args.a, args.b, args.tol)
@@ -331,36 +340,61 @@ def _view(console: Console, trace: str, bodies: str | None) -> int:
     return 0
 
 
-def _bench(console: Console, bodies: int, seconds: float, json_file: str | None) -> int:
+def _bench(
+    console: Console,
+    bodies: int,
+    seconds: float,
+    engine: str,
+    workloads: list[str] | None,
+    json_file: str | None,
+) -> int:
     if not 1 <= bodies <= MAX_BENCH_BODIES:
         return _fail(f"--bodies must be between 1 and {MAX_BENCH_BODIES}, got {bodies}", EXIT_BAD_INPUT)
     if not (math.isfinite(seconds) and 0.0 < seconds <= MAX_BENCH_SECONDS):
         return _fail(f"--seconds must be in (0, {MAX_BENCH_SECONDS:g}], got {seconds}", EXIT_BAD_INPUT)
-    if bodies * seconds > MAX_BENCH_BODY_SECONDS:
+    limit = MAX_BENCH_BODY_SECONDS if engine != "fast" else MAX_FAST_BENCH_BODY_SECONDS
+    if bodies * seconds > limit:
         return _fail(
             f"--bodies {bodies} for --seconds {seconds:g} is {bodies * seconds:,.0f} body-seconds, "
-            f"more than the {MAX_BENCH_BODY_SECONDS:,} a bench may take",
+            f"more than the {limit:,} a bench may take on the {engine} engine"
+            + (" (the reference engine's share would take hours)" if engine != "fast" else ""),
             EXIT_BAD_INPUT,
         )
     if json_file is not None:
         _check_output_file(json_file)
-    results = run_suite(bodies, seconds)
-    table = Table(title=f"acphys bench: {bodies} bodies, {seconds:g} s simulated")
-    for column in ("workload", "body-steps", "seconds", "steps/s", "vs baseline", "vs landblock real time"):
-        table.add_column(column, justify="left" if column == "workload" else "right")
+    names = sorted(set(workloads), key=list(WORKLOADS).index) if workloads else None
+    results = run_suite(bodies, seconds, engine, names)
+    title = f"acphys bench: {bodies:,} bodies, {seconds:g} s simulated, {engine} engine" + (
+        "s" if engine == "both" else ""
+    )
+    table = Table(title=title)
+    columns = ("workload", "engine", "body-steps", "seconds", "steps/s", "vs baseline", "vs real time")
+    for column in (*columns, "fast/ref", "fallback"):
+        table.add_column(column, justify="left" if column in ("workload", "engine") else "right")
     for result in results:
+        ratio = "" if result.fast_vs_reference is None else f"{result.fast_vs_reference:,.1f}x"
+        fallback = "" if result.fallback_share is None else f"{100.0 * result.fallback_share:.2f}%"
         table.add_row(
-            result.name,
+            result.workload,
+            result.engine,
             f"{result.body_steps:,}",
             f"{result.seconds:.3f}",
-            f"{result.rate:,.0f}",
+            f"{result.steps_per_s:,.0f}",
             f"{result.vs_baseline:.4f}",
             f"{result.vs_realtime:.2f}x",
+            ratio,
+            fallback,
         )
     console.print(table)
     if json_file is not None:
-        figures = json.dumps([result.as_dict() for result in results], indent=2)
-        Path(json_file).write_text(figures + "\n", encoding="utf-8")
+        figures = {
+            "acphys": __version__,
+            "bodies": bodies,
+            "seconds": seconds,
+            "engine": engine,
+            "results": [result.as_dict() for result in results],
+        }
+        Path(json_file).write_text(json.dumps(figures, indent=2) + "\n", encoding="utf-8")
         _say(console, f"figures: {json_file}")
     return 0
 

@@ -70,6 +70,9 @@ class FastPhysics(Physics):
         self._records = np.zeros(0, dtype=BODY)
         self._arrays: WorldArrays | None = None
         self._transition = np.zeros(1, dtype=TRANSITION)
+        #: Room for a body's record and the transition as they were, to undo an update handed back.
+        self._saved_body = np.zeros(1, dtype=BODY)
+        self._saved_transition = np.zeros(1, dtype=TRANSITION)
         self._clock = np.zeros(4, dtype=np.float64)
         self._log = np.zeros((LOG_ROWS, kernels.LOG_WIDTH), dtype=np.float64)
         self._moves = np.zeros((LOG_ROWS, 3), dtype=np.int32)
@@ -182,6 +185,8 @@ class FastPhysics(Physics):
                 self._moves,
                 self._counters,
                 self._journal,
+                self._saved_body,
+                self._saved_transition,
             )
             self.counts.kernel += int(self._counters[kernels.STEPS])
             self._counters[kernels.STEPS] = 0
@@ -370,6 +375,15 @@ class FastPhysics(Physics):
             "contact_normal": values[21:24] if transient & TransientState.CONTACT else None,
             "events": events,
         }
+
+    def array_bytes(self) -> int:
+        """The bytes the kernel's arrays take: records, cells, shadow lists, grid, animations."""
+        arrays = self._arrays
+        held = [self._records, self._grid_heads, self._transition, self._log, self._moves, self._journal]
+        if arrays is not None:
+            held += [arrays.cells, arrays.shadow_pool, arrays.landblock_index]
+        held += [self._animations.anims, self._animations.pos_frames, self._animations.hooks]
+        return sum(array.nbytes for array in held)
 
     @property
     def world_arrays(self) -> WorldArrays:

@@ -41,14 +41,14 @@ R_STATIC, R_REACH, R_SHAPE, R_ETHEREAL, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4,
 R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK = 8, 9, 10, 11, 12
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def bail(tr, reason):
     """Hand the step back to the reference path, saying why."""
     tr.bail = reason
     return BAIL
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def cell_index(landblock_index, cell_id):
     """The kernel index of land cell ``cell_id``, or -1."""
     low = cell_id & 0xFFFF
@@ -60,14 +60,14 @@ def cell_index(landblock_index, cell_id):
     return 64 * block + low - 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cell_array_clear(tr):
     """``CELLARRAY``: ``num_cells = 0; added_outside = 0`` (acclient.c:346987-346988)."""
     tr.num_cells = 0
     tr.added_outside = False
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cell_array_add(tr, landblock_index, cell_id):
     """Append ``cell_id`` unless it is there; False when the array is full (the step bails).
 
@@ -85,7 +85,7 @@ def cell_array_add(tr, landblock_index, cell_id):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def add_outside_cell(tr, landblock_index, x, y):
     """Add the land cell at global lcoord ``(x, y)`` when it is inside the world.
 
@@ -97,7 +97,7 @@ def add_outside_cell(tr, landblock_index, x, y):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def check_add_cell_boundary(tr, landblock_index, px, py, x, y, incell_max, incell_min):
     """Add the neighbours of cell ``(x, y)`` a circle at ``(px, py)`` within it reaches.
 
@@ -124,7 +124,7 @@ def check_add_cell_boundary(tr, landblock_index, px, py, x, y, incell_max, incel
     return ok
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def add_all_outside_cells(tr, landblock_index, cell_id):
     """Once per array: every land cell the global spheres (in ``cell_id``'s landblock) overlap.
 
@@ -149,7 +149,7 @@ def add_all_outside_cells(tr, landblock_index, cell_id):
     return ok
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def point_in_poly2d(cells, k, p, px, py):
     """Whether ``(px, py)`` lies inside triangle ``p`` of cell ``k`` projected on the xy plane
     (side POSITIVE: a positive cross value is outside).
@@ -170,7 +170,7 @@ def point_in_poly2d(cells, k, p, px, py):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_terrain_poly(cells, k, px, py):
     """The first of cell ``k``'s triangles whose xy projection holds the point, or -1.
 
@@ -183,7 +183,7 @@ def find_terrain_poly(cells, k, px, py):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def point_in_cell(cells, k, px, py):
     """Whether the landblock-local point lies over one of cell ``k``'s triangles.
 

@@ -44,7 +44,7 @@ _EPSILON2 = EPSILON * EPSILON
 # -- float32 stores -------------------------------------------------------------------------------
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def f32(x):
     """``x`` stored into a C ``float`` and read back (round to nearest even; overflow gives inf).
 
@@ -53,7 +53,7 @@ def f32(x):
     return np.float64(np.float32(x))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def f32x3(x, y, z):
     """Three values narrowed to float32 (a ``Vector3`` store).
 
@@ -65,7 +65,7 @@ def f32x3(x, y, z):
 # -- Vector3 --------------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_add(a, b):
     """``a + b``, narrowed.
 
@@ -74,7 +74,7 @@ def v_add(a, b):
     return f32x3(a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_sub(a, b):
     """``a - b``, narrowed.
 
@@ -83,7 +83,7 @@ def v_sub(a, b):
     return f32x3(a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_scale(v, s):
     """``v * s``, narrowed.
 
@@ -92,7 +92,7 @@ def v_scale(v, s):
     return f32x3(v[0] * s, v[1] * s, v[2] * s)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_div(v, s):
     """``v / s`` by the reciprocal: x scaled by the double reciprocal, y and z by its float32.
 
@@ -104,7 +104,7 @@ def v_div(v, s):
     return f32x3(inv * v[0], inv32 * v[1], inv32 * v[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_neg(v):
     """``-v`` (exact).
 
@@ -113,7 +113,7 @@ def v_neg(v):
     return (-v[0], -v[1], -v[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_dot(a, b):
     """The dot product, in double.
 
@@ -122,7 +122,7 @@ def v_dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_cross(a, b):
     """The cross product, narrowed.
 
@@ -131,7 +131,7 @@ def v_cross(a, b):
     return f32x3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_length_squared(v):
     """The squared length, in double.
 
@@ -140,7 +140,7 @@ def v_length_squared(v):
     return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_length(v):
     """The length, in double.
 
@@ -149,7 +149,7 @@ def v_length(v):
     return math.sqrt(v_length_squared(v))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_is_zero(v):
     """Every axis strictly within EPSILON of zero.
 
@@ -159,7 +159,7 @@ def v_is_zero(v):
     return abs(v[0]) < EPSILON and abs(v[1]) < EPSILON and abs(v[2]) < EPSILON
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_normalized(v):
     """``v`` scaled to unit length, with no small-length check (zero raises ZeroDivisionError, as there).
 
@@ -170,7 +170,7 @@ def v_normalized(v):
     return f32x3(inv * v[0], inv * v[1], inv * v[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_normalize_check_small(v):
     """``(True, v)`` for a vector shorter than EPSILON (left as is), else ``(False, v normalised)``.
 
@@ -184,7 +184,7 @@ def v_normalize_check_small(v):
     return False, f32x3(inv * v[0], inv * v[1], inv * v[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def compass_heading(x, y):
     """``fmod(450 - degrees(atan2(y, x)), 360)``: the compass bearing of (x, y).
 
@@ -194,7 +194,7 @@ def compass_heading(x, y):
     return np.fmod(450.0 - math.degrees(math.atan2(y, x)), 360.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def v_get_heading(v):
     """The compass heading of the horizontal part of ``v``, in degrees (0 with no horizontal length).
 
@@ -210,7 +210,7 @@ def v_get_heading(v):
 # -- Frame: matrix and validity -------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_cache(q):
     """The cached matrix ``m_fl2gv`` of the quaternion ``q``, narrowed.
 
@@ -235,7 +235,7 @@ def frame_cache(q):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_is_valid(origin, q):
     """No NaN anywhere and a quaternion norm within 5 × EPSILON of 1 (a ``float`` local, z first).
 
@@ -257,7 +257,7 @@ def frame_is_valid(origin, q):
     return not (math.isnan(norm) or abs(norm - 1.0) > _NORM_TOLERANCE)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_is_valid_except_for_heading(origin, q):
     """True when the origin is a number but some quaternion component is NaN.
 
@@ -268,7 +268,7 @@ def frame_is_valid_except_for_heading(origin, q):
     return origin_ok and (math.isnan(q[0]) or math.isnan(q[1]) or math.isnan(q[2]) or math.isnan(q[3]))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_is_equal(o1, q1, o2, q2):
     """Origins within EPSILON on every axis (``<=``) and quaternions strictly within EPSILON.
 
@@ -289,7 +289,7 @@ def frame_is_equal(o1, q1, o2, q2):
 # -- Frame: rotation ------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_set_rotate(origin, q, m, new_q):
     """Normalise and store ``new_q``; returns ``(q, m)`` to store: the new ones, or the old if invalid.
 
@@ -308,7 +308,7 @@ def frame_set_rotate(origin, q, m, new_q):
     return q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_grotate(origin, q, m, w):
     """Rotate by the global axis-angle vector ``w`` (radians); ``(q, m)`` unchanged when |w| < EPSILON.
 
@@ -339,7 +339,7 @@ def frame_grotate(origin, q, m, w):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_rotate(origin, q, m, w):
     """Rotate by the local axis-angle vector ``w``: ``localtoglobalvec``, then ``grotate``.
 
@@ -349,7 +349,7 @@ def frame_rotate(origin, q, m, w):
     return frame_grotate(origin, q, m, frame_localtoglobalvec(m, w))
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_interpolate_rotation(origin, q, m, start_q, end_q, t):
     """Slerp from ``start_q`` to ``end_q`` by ``t`` along the shorter arc, set on the frame ``origin, q, m``.
 
@@ -385,7 +385,7 @@ def frame_interpolate_rotation(origin, q, m, start_q, end_q, t):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_interpolate_origin(start_origin, end_origin, t):
     """The blended origin ``(1 - t) · start + t · end`` (every product but ``t · end.x`` spilled).
 
@@ -402,7 +402,7 @@ def frame_interpolate_origin(start_origin, end_origin, t):
 # -- Frame: composition ---------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_combine(origin, q, m, o1, q1, m1, o2, q2):
     """The frame ``origin, q, m`` set to ``f1 ∘ f2``; returns ``(origin, q, m)``.
 
@@ -433,7 +433,7 @@ def frame_combine(origin, q, m, o1, q1, m1, o2, q2):
     return new_origin, q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_subtract1(origin, q, m, o1, q1, o2, q2):
     """The frame ``origin, q, m`` set to X with ``X ∘ f2 = f1``; returns ``(origin, q, m)``.
 
@@ -463,7 +463,7 @@ def frame_subtract1(origin, q, m, o1, q1, o2, q2):
     return f32x3(rx + o1[0], ry + o1[1], rz + o1[2]), q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_subtract2(origin, q, m, o1, q1, o2, q2, m2):
     """The frame ``origin, q, m`` set to X with ``f2 ∘ X = f1``; returns ``(origin, q, m)``.
 
@@ -489,7 +489,7 @@ def frame_subtract2(origin, q, m, o1, q1, o2, q2, m2):
     return local, q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def combine_anim_frame(origin, q, m, pos_origin, pos_q):
     """The frame ``origin, q, m`` composed with a position frame (``frame ∘ pos``): ``(origin, q, m)``.
 
@@ -517,7 +517,7 @@ def combine_anim_frame(origin, q, m, pos_origin, pos_q):
     return new_origin, q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def combine_scaled(origin, q, m, o1, q1, m1, o2, q2, scale):
     """The frame ``origin, q, m`` set to ``f1 ∘ f2`` with f2's offset scaled; returns ``(origin, q, m)``.
 
@@ -551,7 +551,7 @@ def combine_scaled(origin, q, m, o1, q1, m1, o2, q2, scale):
 # -- Frame: points and vectors --------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_localtoglobalvec(m, v):
     """A local vector rotated into global space (each row sums its z term first).
 
@@ -565,7 +565,7 @@ def frame_localtoglobalvec(m, v):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_globaltolocalvec(m, v):
     """A global vector rotated into local space (the transposed matrix).
 
@@ -579,7 +579,7 @@ def frame_globaltolocalvec(m, v):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_localtoglobal(origin, m, p):
     """A local point taken to global space.
 
@@ -593,7 +593,7 @@ def frame_localtoglobal(origin, m, p):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_globaltolocal(origin, m, p):
     """A global point taken to local space (the offset spilled, but the z row uses the unspilled z).
 
@@ -612,7 +612,7 @@ def frame_globaltolocal(origin, m, p):
 # -- Frame: headings ------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_get_vector_heading(m):
     """The local +y axis (the facing) in global coordinates, a -0.0 turned to +0.0 as retail's.
 
@@ -622,7 +622,7 @@ def frame_get_vector_heading(m):
     return f32x3((m[6] + m[0]) * 0.0 + m[3], (m[7] + m[1]) * 0.0 + m[4], (m[8] + m[2]) * 0.0 + m[5])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_get_heading(m):
     """The compass heading of the facing, in degrees [0, 360).
 
@@ -632,7 +632,7 @@ def frame_get_heading(m):
     return compass_heading((m[6] + m[0]) * 0.0 + m[3], (m[7] + m[1]) * 0.0 + m[4])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_euler_set_rotate(origin, q, m, x, y, z):
     """The rotation set from static-axis Euler angles x, then y, then z (radians); returns ``(q, m)``.
 
@@ -658,7 +658,7 @@ def frame_euler_set_rotate(origin, q, m, x, y, z):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_set_vector_heading(origin, q, m, heading):
     """Face along ``heading`` (yaw from its bearing, pitch from its z); ``(q, m)`` kept if it is tiny.
 
@@ -673,7 +673,7 @@ def frame_set_vector_heading(origin, q, m, heading):
     return frame_euler_set_rotate(origin, q, m, pitch, 0.0, yaw)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def frame_set_heading(origin, q, m, degrees):
     """Face compass ``degrees``, keeping the facing's z as the pitch input; returns ``(q, m)``.
 
@@ -688,7 +688,7 @@ def frame_set_heading(origin, q, m, degrees):
 # -- cell ids -------------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def valid_cell_index(cell_id):
     """The low word names a land cell (1..0x40), an env cell (0x100..0xFFFD) or the block (0xFFFF).
 
@@ -698,7 +698,7 @@ def valid_cell_index(cell_id):
     return 1 <= low <= LAST_LAND_CELL or FIRST_ENV_CELL <= low <= 0xFFFD or low == 0xFFFF
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def gid_to_lcoord(cell_id):
     """``(True, x, y)``: the lcoord of an outdoor cell id, or ``(False, 0, 0)`` for no valid land cell.
 
@@ -720,7 +720,7 @@ def gid_to_lcoord(cell_id):
     return False, 0, 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def lcoord_to_gid(x, y):
     """The outdoor cell id of lcoord (x, y), or 0 outside the world.
 
@@ -734,7 +734,7 @@ def lcoord_to_gid(x, y):
     return (((y >> 3) | 32 * (x & ~7)) << 16) | ((y & 7) + 8 * (x & 7) + 1)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _floor_checked(x):
     """``math.floor(x)`` as a float, raising as Python's does for NaN and the infinities."""
     if math.isnan(x):
@@ -744,7 +744,7 @@ def _floor_checked(x):
     return np.floor(x)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def adjust_to_outside_lcoord(cell_id, loc):
     """``(ok, lx, ly, loc)``: the lcoord of the land cell under the block-local ``loc``; ``loc`` rewritten.
 
@@ -775,7 +775,7 @@ def adjust_to_outside_lcoord(cell_id, loc):
     return True, np.int64(lx), np.int64(ly), (new_x, new_y, z)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def adjust_to_outside(cell_id, loc):
     """``(cell_id, loc)``: the outdoor cell holding block-local ``loc`` (0 off the world); ``loc`` rewritten.
 
@@ -788,7 +788,7 @@ def adjust_to_outside(cell_id, loc):
     return lcoord_to_gid(lx, ly), loc
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def get_block_offset(cell_from, cell_to):
     """The offset from ``cell_from``'s landblock origin to ``cell_to``'s: Δblock × 192 m, z = 0.
 
@@ -815,7 +815,7 @@ def get_block_offset(cell_from, cell_to):
 # -- Position -------------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_get_offset(cell_a, origin_a, cell_b, origin_b):
     """The vector from position a's origin to position b's, across landblocks.
 
@@ -827,7 +827,7 @@ def position_get_offset(cell_a, origin_a, cell_b, origin_b):
     return f32x3(block[0] + origin_b[0] - origin_a[0], y - origin_a[1], z - origin_a[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_localtoglobal_offset(cell_a, origin_a, cell_b, origin_b, m_b, v):
     """The vector from position a's origin to the point ``v`` local to position b's frame.
 
@@ -842,7 +842,7 @@ def position_localtoglobal_offset(cell_a, origin_a, cell_b, origin_b, m_b, v):
     return f32x3(x - origin_a[0], block[1] + gy - origin_a[1], z - origin_a[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_localtoglobal(cell_a, cell_b, origin_b, m_b, v):
     """The point ``v`` local to position b's frame, in position a's landblock.
 
@@ -858,7 +858,7 @@ def position_localtoglobal(cell_a, cell_b, origin_b, m_b, v):
     return f32x3(block[0] + gx, block[1] + gy, block[2] + gz)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_localtoglobalvec(m, v):
     """``v`` rotated by the position's frame, each row summing its y term first.
 
@@ -872,7 +872,7 @@ def position_localtoglobalvec(m, v):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_globaltolocalvec(m, v):
     """A global vector rotated into the position's frame, each row summing its y term first.
 
@@ -886,7 +886,7 @@ def position_globaltolocalvec(m, v):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def position_localtolocal(cell_a, origin_a, m_a, cell_b, origin_b, m_b, v):
     """The point ``v`` local to position b's frame, expressed in position a's frame (across blocks).
 

@@ -29,19 +29,19 @@ MAX_REACH = 0
 MAX_TILES = 64
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def block_origin(cell_id):
     """The landblock-global metres of ``cell_id``'s landblock's south-west corner."""
     return ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH, ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def bucket_of(tx, ty):
     """The hash bucket of square ``(tx, ty)``."""
     return ((tx * 73856093) ^ (ty * 19349663)) & (BUCKETS - 1)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def grid_remove(bodies, heads, i):
     """Take body ``i`` out of the grid (nothing if it is not filed)."""
     b = bodies[i]
@@ -59,7 +59,7 @@ def grid_remove(bodies, heads, i):
     b.grid_prev = -1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def grid_place(bodies, heads, i):
     """File body ``i`` by the square under its origin; a body without shadows is not filed."""
     grid_remove(bodies, heads, i)
@@ -77,7 +77,7 @@ def grid_place(bodies, heads, i):
     heads[bucket] = i
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def grid_place_all(bodies, heads):
     """File every body afresh."""
     heads[:] = -1

@@ -185,7 +185,7 @@ def store_sequence(record: np.void, sequence: Sequence, animations: list[Animati
 # -- playback --------------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def apply_physics(velocity, omega, origin, q, m, quantum, sign):
     """The frame ``origin, q, m`` moved by ``|quantum| · velocity`` and turned by ``|quantum| · omega``
     (signed as ``sign``); returns ``(origin, q, m)``.
@@ -203,13 +203,13 @@ def apply_physics(velocity, omega, origin, q, m, quantum, sign):
     return origin, q, m
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _playable(frame_number):
     """A frame number whose floor the kernel takes (NaN and the infinities are not)."""
     return -_FRAME_LIMIT < frame_number < _FRAME_LIMIT
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _frame_row(anims, anim, frame):
     """The table row of ``frame`` of animation ``anim`` as the reference's list indexing finds it
     (a negative frame counts from the end), or -1 where the reference raises IndexError."""
@@ -221,18 +221,18 @@ def _frame_row(anims, anim, frame):
     return np.int64(anims[anim, 0]) + frame
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _vec3(values):
     """A record's float32 3-vector as a tuple of float64."""
     return (np.float64(values[0]), np.float64(values[1]), np.float64(values[2]))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _pos_origin(pos_frames, row):
     return (np.float64(pos_frames[row, 0]), np.float64(pos_frames[row, 1]), np.float64(pos_frames[row, 2]))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def _pos_q(pos_frames, row):
     return (
         np.float64(pos_frames[row, 3]),
@@ -242,7 +242,7 @@ def _pos_q(pos_frames, row):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def get_starting_frame(framerate, low_frame, high_frame):
     """``low_frame`` forwards; ``high_frame + 1 - F_EPSILON`` backwards.
 
@@ -254,7 +254,7 @@ def get_starting_frame(framerate, low_frame, high_frame):
     return np.float64(low_frame)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def get_ending_frame(framerate, low_frame, high_frame):
     """``high_frame + 1 - F_EPSILON`` forwards; ``low_frame`` backwards.
 
@@ -266,7 +266,7 @@ def get_ending_frame(framerate, low_frame, high_frame):
     return np.float64(np.int64(high_frame) + 1) - F_EPSILON
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def leave_or_enter(
     seq, anims, pos_frames, node, frame_number, velocity, omega, origin, q, m, quantum, entering
 ):
@@ -299,7 +299,7 @@ def leave_or_enter(
     return True, origin, q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offset_q, offset_m):
     """Play ``quantum`` seconds of the record's sequence into the offset frame: ``(status, origin, q, m)``.
 

@@ -57,6 +57,7 @@ from acphys.fast.kernels.frame import (
     v_normalize_check_small,
 )
 from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of
+from acphys.fast.kernels.store import put
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT
 from acphys.world.terrain import WaterType
@@ -92,18 +93,18 @@ ENTIRELY_WATER_DEPTH = 0.9
 REACH_MARGIN = 1e-3
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def t3(a):
     """A record's 3-array as the tuple the frame kernels take."""
     return (a[0], a[1], a[2])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def t4(a):
     return (a[0], a[1], a[2], a[3])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def t9(a):
     return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8])
 
@@ -111,7 +112,7 @@ def t9(a):
 # -- SPHEREPATH -----------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cache_global_curr_center(tr):
     """Place each local sphere centre in ``curr_pos``'s frame.
 
@@ -126,7 +127,7 @@ def cache_global_curr_center(tr):
         tr.global_curr_center[s, 2] = f32(m[8] * cz + m[5] * cy + m[2] * cx + o[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cache_global_sphere_at_check(tr):
     """Rebuild the global spheres and low point at ``check_pos``.
 
@@ -146,7 +147,7 @@ def cache_global_sphere_at_check(tr):
     tr.global_low_point[2] = f32(m[8] * pz + m[2] * px + m[5] * py + o[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cache_global_sphere_offset(tr, dx, dy, dz):
     """Move the global spheres and low point by an offset (float32 stores: Vector3 sums).
 
@@ -162,7 +163,7 @@ def cache_global_sphere_offset(tr, dx, dy, dz):
     tr.global_low_point[2] = f32(tr.global_low_point[2] + dz)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def add_offset_to_check_pos(tr, dx, dy, dz):
     """Move ``check_pos`` and the global spheres; the cell array goes stale.
 
@@ -176,7 +177,7 @@ def add_offset_to_check_pos(tr, dx, dy, dz):
     cache_global_sphere_offset(tr, dx, dy, dz)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_check_pos_to_curr(tr):
     """``set_check_pos(curr_pos, curr_cell)``: the candidate restarts where the sweep is.
 
@@ -184,41 +185,41 @@ def set_check_pos_to_curr(tr):
     Retail: SPHEREPATH::set_check_pos @ 0x0050A8B0 (acclient.c:312090)
     """
     tr.check_cell_id = tr.curr_cell_id
-    tr.check_origin[:] = tr.curr_origin
-    tr.check_q[:] = tr.curr_q
-    tr.check_m[:] = tr.curr_m
+    put(tr.check_origin, tr.curr_origin)
+    put(tr.check_q, tr.curr_q)
+    put(tr.check_m, tr.curr_m)
     tr.check_cell = tr.curr_cell
     tr.cell_array_valid = False
     cache_global_sphere_at_check(tr)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def save_check_pos(tr):
     """Port of :meth:`acphys.transition.sphere_path.SpherePath.save_check_pos`.
     Retail: SPHEREPATH::save_check_pos @ 0x0050A880 (acclient.c:312082)
     """
     tr.backup_cell = tr.check_cell
     tr.backup_cell_id = tr.check_cell_id
-    tr.backup_origin[:] = tr.check_origin
-    tr.backup_q[:] = tr.check_q
-    tr.backup_m[:] = tr.check_m
+    put(tr.backup_origin, tr.check_origin)
+    put(tr.backup_q, tr.check_q)
+    put(tr.backup_m, tr.check_m)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def restore_check_pos(tr):
     """Port of :meth:`acphys.transition.sphere_path.SpherePath.restore_check_pos`.
     Retail: SPHEREPATH::restore_check_pos @ 0x0050B100 (acclient.c:312527)
     """
     tr.check_cell_id = tr.backup_cell_id
-    tr.check_origin[:] = tr.backup_origin
-    tr.check_q[:] = tr.backup_q
-    tr.check_m[:] = tr.backup_m
+    put(tr.check_origin, tr.backup_origin)
+    put(tr.check_q, tr.backup_q)
+    put(tr.check_m, tr.backup_m)
     tr.check_cell = tr.backup_cell
     tr.cell_array_valid = False
     cache_global_sphere_at_check(tr)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def adjust_check_pos(tr, cell_id):
     """Re-home ``check_pos`` into outdoor cell ``cell_id`` (shifting by the block offset).
 
@@ -237,7 +238,7 @@ def adjust_check_pos(tr, cell_id):
 # -- COLLISIONINFO --------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_contact_plane(tr, nx, ny, nz, d, is_water):
     """Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_contact_plane`.
     Retail: COLLISIONINFO::set_contact_plane @ 0x00509D80 (acclient.c:311580)
@@ -250,7 +251,7 @@ def set_contact_plane(tr, nx, ny, nz, d, is_water):
     tr.contact_plane_is_water = is_water
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_collision_normal(tr, nx, ny, nz):
     """Store the normal normalised (zero when shorter than EPSILON; valid either way).
 
@@ -264,7 +265,7 @@ def set_collision_normal(tr, nx, ny, nz):
     tr.collision_normal[0], tr.collision_normal[1], tr.collision_normal[2] = n
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_sliding_normal(tr, nx, ny):
     """Store the horizontal part of a normal, normalised (zero when too short).
 
@@ -278,7 +279,7 @@ def set_sliding_normal(tr, nx, ny):
     tr.sliding_normal[0], tr.sliding_normal[1], tr.sliding_normal[2] = n
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def collision_info_init(tr):
     """Port of :meth:`acphys.transition.collision_info.CollisionInfo.init`.
     Retail: COLLISIONINFO::init @ 0x00509D60 (acclient.c:311566)
@@ -295,7 +296,7 @@ def collision_info_init(tr):
 # -- the transition's set-up ------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def transition_init(tr):
     """Clear the object, the path's per-sweep fields, the collision record and the cell array.
 
@@ -326,7 +327,7 @@ def transition_init(tr):
 # -- OBJECTINFO -------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def kill_velocity(bodies, tr):
     """Zero the moving body's velocity (``CPhysicsObj::set_velocity(0)``: it is already no more
     than 50 m/s, marks ``jumped_this_frame`` when it changes, and keeps the body active).
@@ -343,7 +344,7 @@ def kill_velocity(bodies, tr):
         b.jumped_this_frame = True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def x87_divide(numerator, denominator):
     """Port of :func:`acphys.transition.object_info.x87_divide`: ±inf or NaN instead of an error."""
     if denominator != 0.0:
@@ -353,7 +354,7 @@ def x87_divide(numerator, denominator):
     return math.copysign(math.inf, numerator) * math.copysign(1.0, denominator)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_depth, land_cell_id):
     """Rest sphere 0 (centre ``(cx, cy, cz)``, cell-local) on a terrain plane lowered by the water.
 
@@ -395,7 +396,7 @@ def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_dep
 # -- what a cell holds ------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_env_collisions(w, tr, k):
     """Collide sphere 0 with the terrain triangle of cell ``k`` under the low point.
 
@@ -438,7 +439,7 @@ def find_env_collisions(w, tr, k):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def out_of_reach(bodies, tr, j):
     """Whether every moving sphere at ``check_pos`` misses every sphere of body ``j`` by more than
     ``REACH_MARGIN`` (the reference's shortcut past ``intersects_sphere``).
@@ -468,7 +469,7 @@ def out_of_reach(bodies, tr, j):
     return True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def collides_with_sphere(dx, dy, dz, radsum):
     """Port of :meth:`acphys.geometry.sphere.Sphere.collides_with_sphere` (touching hits).
     Retail: CSphere::collides_with_sphere @ 0x005369E0 (acclient.c:358508)
@@ -476,7 +477,7 @@ def collides_with_sphere(dx, dy, dz, radsum):
     return dx * dx + dy * dy + dz * dz <= radsum * radsum
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def sphere_answers_ok(bodies, tr, j, s, is_creature):
     """Whether ``CSphere::intersects_sphere`` of body ``j``'s sphere ``s`` (placed at its position
     and scale, in ``check_pos``'s block) answers OK without touching anything; False when it would
@@ -519,7 +520,7 @@ def sphere_answers_ok(bodies, tr, j, s, is_creature):
     return not (collides_with_sphere(dx, dy, dz, radsum) or second)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def body_find_obj_collisions(w, tr, j):
     """Body ``j``'s answer to the sweep, when it is OK and changes nothing; else BAIL.
 
@@ -550,7 +551,7 @@ def body_find_obj_collisions(w, tr, j):
     return OK
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _asks(bodies, tr, j, k):
     """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j``: shadowed there, not the
     mover, not held."""
@@ -563,7 +564,7 @@ def _asks(bodies, tr, j, k):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_obj_collisions(w, tr, k):
     """Ask the bodies shadowed in cell ``k`` to collide with the sweep; OK when every one would
     answer OK without touching anything, else BAIL (as for any static object's shadow).
@@ -611,7 +612,7 @@ def find_obj_collisions(w, tr, k):
     return OK
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_collisions(w, tr, k):
     """Terrain, then the building (a cell with one is uncovered), then the shadowed objects.
 
@@ -626,7 +627,7 @@ def find_collisions(w, tr, k):
     return result
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def insert_into_cell(w, tr, k, attempts):
     """Collide with everything in cell ``k`` until OK or COLLIDED, at most ``attempts`` times.
 
@@ -646,7 +647,7 @@ def insert_into_cell(w, tr, k, attempts):
     return ts
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_cell_list(w, tr, want_cell):
     """Fill the cell array with the land cells the global spheres touch at ``check_pos``; with
     ``want_cell``, also the cell holding sphere 0's centre (-1 for none, -2 to bail).
@@ -681,7 +682,7 @@ def find_cell_list(w, tr, want_cell):
     return curr
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def check_other_cells(w, tr, curr_cell):
     """Collide with every other cell the spheres reach, then re-home ``check_pos``.
 
@@ -719,7 +720,7 @@ def check_other_cells(w, tr, curr_cell):
     return bail(tr, R_NO_CELL)  # no cell holds sphere 0's centre: leaving the known cells
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def calc_num_steps(tr):
     """``(offset, offset_per_step, num_steps)`` for the path (not a viewer).
 
@@ -744,7 +745,7 @@ def calc_num_steps(tr):
     return offset, (0.0, 0.0, 0.0), 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def snap_to_plane(nx, ny, nz, d, x, y, z):
     """The offset with the z that keeps it in the plane (unchanged when ``|N.z| <= EPSILON``).
 
@@ -757,7 +758,7 @@ def snap_to_plane(nx, ny, nz, d, x, y, z):
     return (x, y, z)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def adjust_offset(tr, x, y, z):
     """Bend one step's offset by the sliding normal and the contact plane.
 
@@ -807,7 +808,7 @@ def adjust_offset(tr, x, y, z):
 # -- steps, slides and validation ----------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def cliff_slide(tr, nx, ny, nz):
     """Slide along the crease between the too-steep contact plane and the last known one.
 
@@ -838,7 +839,7 @@ def cliff_slide(tr, nx, ny, nz):
     return ADJUSTED
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def step_down(w, tr, step_down_ht, z_val, deeper):
     """Lower the candidate by ``step_down_ht`` and insert it: 1 when it lands on a contact plane
     with normal z at least ``z_val`` and a placement re-insert there is OK, else 0 (or BAIL).
@@ -872,7 +873,7 @@ def step_down(w, tr, step_down_ht, z_val, deeper):
     return 1 if ts == OK else 0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def edge_slide(w, tr, ts, step_down_ht, z_val, deeper):
     """A body that found nothing to step down onto: ``(stop, ts)``.
 
@@ -922,7 +923,7 @@ def edge_slide(w, tr, ts, step_down_ht, z_val, deeper):
     return True, COLLIDED
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", _nrt=False)
 def transitional_insert_body(w, tr, attempts, deeper):
     """Insert ``check_pos`` into its cell and the cells around, resolving what it meets.
 
@@ -992,39 +993,39 @@ def transitional_insert_body(w, tr, attempts, deeper):
     return ts
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _insert_too_deep(w, tr, attempts):
     """Below the deepest compiled level: the reference path nests further."""
     return bail(tr, R_DEEP)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _insert_level_5(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_too_deep)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _insert_level_4(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_level_5)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _insert_level_3(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_level_4)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _insert_level_2(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_level_3)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def transitional_insert(w, tr, attempts):
     """The outermost ``transitional_insert``; five nested levels follow it."""
     return transitional_insert_body(w, tr, attempts, _insert_level_2)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def validate_transition(w, tr, ts):
     """Accept or roll back one step; update the sliding normal, the stationary-fall counter and the
     contact state.
@@ -1041,9 +1042,9 @@ def validate_transition(w, tr, ts):
         moved = False
     if ts == OK:
         tr.curr_cell_id = tr.check_cell_id
-        tr.curr_origin[:] = tr.check_origin
-        tr.curr_q[:] = tr.check_q
-        tr.curr_m[:] = tr.check_m
+        put(tr.curr_origin, tr.check_origin)
+        put(tr.curr_q, tr.check_q)
+        put(tr.curr_m, tr.check_m)
         tr.curr_cell = tr.check_cell
         cache_global_curr_center(tr)
         set_check_pos_to_curr(tr)
@@ -1087,7 +1088,7 @@ def validate_transition(w, tr, ts):
                 tr.collided_with_environment = True
     tr.last_known_contact_plane_valid = tr.contact_plane_valid
     if tr.contact_plane_valid:
-        tr.last_known_contact_n[:] = tr.contact_n
+        put(tr.last_known_contact_n, tr.contact_n)
         tr.last_known_contact_d = tr.contact_d
         tr.last_known_contact_plane_cell_id = tr.contact_plane_cell_id
         tr.last_known_contact_plane_is_water = tr.contact_plane_is_water
@@ -1101,7 +1102,7 @@ def validate_transition(w, tr, ts):
     return ts
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def find_transitional_position(w, tr):
     """Sweep from ``curr_pos`` to ``end_pos`` in steps of at most sphere 0's radius: 1 when the last
     step validated OK, 0 when not, BAIL when the reference path must sweep.
@@ -1137,8 +1138,8 @@ def find_transitional_position(w, tr):
                 t3(tr.check_origin), t4(tr.check_q), t9(tr.check_m), t4(tr.begin_q), t4(tr.end_q),
                 (step + 1) / num_steps,
             )
-            tr.check_q[:] = q
-            tr.check_m[:] = m
+            put(tr.check_q, q)
+            put(tr.check_m, m)
         tr.sliding_normal_valid = False
         tr.contact_plane_valid = False
         tr.contact_plane_is_water = False
@@ -1156,9 +1157,9 @@ def find_transitional_position(w, tr):
     return 1 if ts == OK else 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_curr_rotation(tr, new_q):
     """``curr_pos.frame.set_rotate(new_q)`` (kept when the result is not a valid frame)."""
     q, m = frame_set_rotate(t3(tr.curr_origin), t4(tr.curr_q), t9(tr.curr_m), t4(new_q))
-    tr.curr_q[:] = q
-    tr.curr_m[:] = m
+    put(tr.curr_q, q)
+    put(tr.curr_m, m)

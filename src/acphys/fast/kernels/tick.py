@@ -42,6 +42,7 @@ from acphys.fast.kernels.frame import (
 )
 from acphys.fast.kernels.grid import grid_place
 from acphys.fast.kernels.sequence import STATUS_DONE, sequence_update
+from acphys.fast.kernels.store import fill, put
 from acphys.fast.kernels.sweep import (
     cache_global_curr_center,
     find_transitional_position,
@@ -117,7 +118,7 @@ J_SLOT = 2
 # -- the shadow pool, journalled ---------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _journal(journal, counters, kind, a, b):
     n = counters[JOURNAL]
     if n >= journal.shape[0]:
@@ -129,7 +130,7 @@ def _journal(journal, counters, kind, a, b):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _undo(bodies, cells, shadow_pool, journal, counters):
     for n in range(counters[JOURNAL] - 1, -1, -1):
         kind, a, b = journal[n, 0], journal[n, 1], journal[n, 2]
@@ -142,7 +143,7 @@ def _undo(bodies, cells, shadow_pool, journal, counters):
     counters[JOURNAL] = 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
     """Take each of body ``i``'s shadows out of its cell (the cell's last entry takes its slot).
 
@@ -180,7 +181,7 @@ def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
     """One shadow per cell of the transition's cell array, appended to that cell's list. Returns
     -1 when done, else the index of a cell whose list is full.
@@ -218,24 +219,24 @@ def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
 # -- the body's state -----------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def calc_acceleration(b):
     """Port of :meth:`acphys.physics_obj.PhysicsObj.calc_acceleration`.
     Retail: CPhysicsObj::calc_acceleration @ 0x00510950 (acclient.c:317786)
     """
     ts = b.transient
     if ts & TS_CONTACT and ts & TS_ON_WALKABLE and not b.state & PS_SLEDDING:
-        b.acceleration[:] = 0.0
-        b.omega[:] = 0.0
+        fill(b.acceleration, 0.0)
+        fill(b.omega, 0.0)
     elif b.state & PS_GRAVITY:
         b.acceleration[0] = 0.0
         b.acceleration[1] = 0.0
         b.acceleration[2] = GRAVITY
     else:
-        b.acceleration[:] = 0.0
+        fill(b.acceleration, 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_on_walkable(b, on, events):
     """Set ON_WALKABLE, note landing and leaving, recompute the acceleration; BAIL when a movement
     manager would have to hear of it (its interpreter replays motions).
@@ -260,7 +261,7 @@ def set_on_walkable(b, on, events):
     return 0, events
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_frame(b, origin, q, m):
     """Make the frame the body's (a sound origin with a NaN quaternion commits an all-zero one).
 
@@ -272,13 +273,13 @@ def set_frame(b, origin, q, m):
         q = (0.0, 0.0, 0.0, 0.0)
     b.origin[0], b.origin[1], b.origin[2] = origin
     b.q[0], b.q[1], b.q[2], b.q[3] = q
-    b.m[:] = m
+    put(b.m, m)
 
 
 # -- the candidate frame ------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def calc_friction(b, quantum, velocity_mag2):
     """Port of :meth:`acphys.physics_obj.PhysicsObj.calc_friction` (not a sledding body).
     Retail: CPhysicsObj::calc_friction @ 0x0050EE70 (acclient.c:316090)
@@ -296,7 +297,7 @@ def calc_friction(b, quantum, velocity_mag2):
     v[0], v[1], v[2] = f32(factor * v[0]), f32(factor * v[1]), f32(factor * v[2])
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def update_physics_internal(b, quantum, origin, q, m):
     """Euler-integrate velocity, acceleration and omega into the candidate; returns it.
 
@@ -316,7 +317,7 @@ def update_physics_internal(b, quantum, origin, q, m):
             velocity_mag2 = MAX_VELOCITY * MAX_VELOCITY
         calc_friction(b, quantum, velocity_mag2)
         if velocity_mag2 - SMALL_VELOCITY * SMALL_VELOCITY < EPSILON:
-            v[:] = 0.0
+            fill(v, 0.0)
         ax_half_dt = f32(a[0] * 0.5 * quantum)
         ay_term = f32(a[1] * 0.5 * quantum * quantum)
         vz_term = f32(quantum * v[2])
@@ -335,7 +336,7 @@ def update_physics_internal(b, quantum, origin, q, m):
     return origin, q, m
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def update_position_internal(w, b, quantum):
     """The candidate frame: root motion (the sequence played into an offset frame), scaled on
     walkable ground, combined onto the body's frame, then integrated. ``(status, origin, q, m)``:
@@ -367,7 +368,7 @@ def update_position_internal(w, b, quantum):
 # -- the sweep and the commit ----------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def transition(w, tr, i, origin, q, m):
     """Sweep body ``i`` from where it is to the candidate: 1 found, 0 not, BAIL.
 
@@ -385,13 +386,13 @@ def transition(w, tr, i, origin, q, m):
         is_water = bool(ts & TS_WATER_CONTACT)
         v, n = b.velocity, b.contact_n
         tr.last_known_contact_plane_valid = True
-        tr.last_known_contact_n[:] = b.contact_n
+        put(tr.last_known_contact_n, b.contact_n)
         tr.last_known_contact_d = b.contact_d
         tr.last_known_contact_plane_is_water = is_water
         if not v[2] * n[2] + v[1] * n[1] + v[0] * n[0] > EPSILON:  # check_contact(True)
             tr.last_known_contact_plane_cell_id = b.contact_cell_id
             tr.contact_plane_valid = True
-            tr.contact_n[:] = b.contact_n
+            put(tr.contact_n, b.contact_n)
             tr.contact_d = b.contact_d
             tr.contact_plane_is_water = is_water
             state |= OI_CONTACT
@@ -424,16 +425,16 @@ def transition(w, tr, i, origin, q, m):
     # SPHEREPATH::init_path
     tr.begin_cell = b.cell
     tr.begin_cell_id = b.cell_id
-    tr.begin_origin[:] = b.origin
-    tr.begin_q[:] = b.q
+    put(tr.begin_origin, b.origin)
+    put(tr.begin_q, b.q)
     tr.end_cell_id = b.cell_id
     tr.end_origin[0], tr.end_origin[1], tr.end_origin[2] = origin
     tr.end_q[0], tr.end_q[1], tr.end_q[2], tr.end_q[3] = q
     tr.curr_cell = b.cell
     tr.curr_cell_id = b.cell_id
-    tr.curr_origin[:] = b.origin
-    tr.curr_q[:] = b.q
-    tr.curr_m[:] = b.m
+    put(tr.curr_origin, b.origin)
+    put(tr.curr_q, b.q)
+    put(tr.curr_m, b.m)
     cache_global_curr_center(tr)
     tr.insert_type = 0
     if ts & TS_STATIONARY_STUCK:
@@ -445,7 +446,7 @@ def transition(w, tr, i, origin, q, m):
     return find_transitional_position(w, tr)
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     """Report touching the environment, bounce or stop, and keep the stationary bits.
 
@@ -470,7 +471,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     if frames <= 1:
         if apply_bounce and tr.collision_normal_valid:
             if b.state & PS_INELASTIC:
-                v[:] = 0.0
+                fill(v, 0.0)
             else:
                 n = tr.collision_normal
                 approach = v[2] * n[2] + v[1] * n[1] + n[0] * v[0]
@@ -480,7 +481,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
                     dz = f32(impulse * n[2])
                     v[0], v[1], v[2] = f32(impulse * n[0] + v[0]), f32(dy + v[1]), f32(dz + v[2])
     else:
-        v[:] = 0.0
+        fill(v, 0.0)
     if frames == 0 or frames == 3:
         b.transient &= ~STATIONARY_MASK
     elif frames == 1:
@@ -492,7 +493,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     return events
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def set_position_internal(w, tr, i, moves, counters, journal, events):
     """Commit the sweep: cell, frame, contact, walkable, water, sliding, collisions, shadows.
     Returns ``(status, events)``: 0, BAIL, or ``GROW`` with the full cell in the counters.
@@ -520,7 +521,7 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
         b.cell_id = cells[tr.curr_cell].cell_id
     set_frame(b, t3(tr.curr_origin), t4(tr.curr_q), t9(tr.curr_m))
     b.contact_cell_id = tr.contact_plane_cell_id
-    b.contact_n[:] = tr.contact_n
+    put(b.contact_n, tr.contact_n)
     b.contact_d = tr.contact_d
     if tr.contact_plane_valid:
         b.transient |= TS_CONTACT
@@ -543,7 +544,7 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
                 return bail(tr, R_MOTION), events
             events |= EVENT_LEAVE_GROUND
         calc_acceleration(b)
-    b.sliding_normal[:] = tr.sliding_normal
+    put(b.sliding_normal, tr.sliding_normal)
     if tr.sliding_normal_valid:
         b.transient |= TS_SLIDING
     else:
@@ -561,7 +562,7 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
     return 0, events
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def update_object_internal(w, tr, i, quantum, moves, counters, journal):
     """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
 
@@ -586,14 +587,14 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal):
         and abs(origin[2] - b.origin[2]) <= EPSILON
     ):
         set_frame(b, t3(b.origin), q, m)
-        b.cached_velocity[:] = 0.0
+        fill(b.cached_velocity, 0.0)
         return 0, events
     found = transition(w, tr, i, origin, q, m)
     if found == BAIL:
         return BAIL, events
     if not found:
         set_frame(b, t3(b.origin), q, m)
-        b.cached_velocity[:] = 0.0
+        fill(b.cached_velocity, 0.0)
         return 0, events
     offset = position_get_offset(b.cell_id, t3(b.origin), tr.curr_cell_id, t3(tr.curr_origin))
     inv = 1.0 / f32(quantum)
@@ -607,27 +608,28 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal):
 # -- the clock ----------------------------------------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _log_step(log, counters, b, i, t, quantum, events):
     """One trace row: the body right after a step."""
     n = counters[LOGGED]
-    row = log[n]
-    row[0] = i
-    row[1] = t
-    row[2] = quantum
-    row[3] = b.cell_id
-    row[4:7] = b.origin
-    row[7:11] = b.q
-    row[11:14] = b.velocity
-    row[14:17] = b.cached_velocity
-    row[17:20] = b.omega
-    row[20] = b.transient
-    row[21:24] = b.contact_n
-    row[24] = events
+    log[n, 0] = i
+    log[n, 1] = t
+    log[n, 2] = quantum
+    log[n, 3] = b.cell_id
+    for k in range(3):
+        log[n, 4 + k] = b.origin[k]
+        log[n, 11 + k] = b.velocity[k]
+        log[n, 14 + k] = b.cached_velocity[k]
+        log[n, 17 + k] = b.omega[k]
+        log[n, 21 + k] = b.contact_n[k]
+    for k in range(4):
+        log[n, 7 + k] = b.q[k]
+    log[n, 20] = b.transient
+    log[n, 24] = events
     counters[LOGGED] = n + 1
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal):
     """``update_object``'s slice: advance the physics timer, step with the float32 quantum.
 
@@ -648,7 +650,7 @@ def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journa
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
     """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
 
@@ -698,9 +700,9 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks, tr_array,
-               clock, start, tracing, log, moves, counters, journal):
+               clock, start, tracing, log, moves, counters, journal, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
@@ -713,8 +715,6 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
     """
     w = (bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks)
     tr = tr_array[0]
-    saved_tr = tr_array.copy()
-    saved = bodies[:1].copy()
     n = len(bodies)
     for i in range(start, n):
         b = bodies[i]

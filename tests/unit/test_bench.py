@@ -9,22 +9,59 @@ import pytest
 
 from acphys.bench import LANDBLOCK_RATE, WORKLOADS, run_suite
 from acphys.cli import main
+from acphys.flags import TransientState
 from support import walk_tolerance
 
 
 def test_the_suite_reports_every_workload_against_the_baseline() -> None:
     results = run_suite(bodies=4, seconds=0.5)
-    assert [r.name for r in results] == ["baseline", *WORKLOADS]
+    assert [r.workload for r in results] == ["baseline", *WORKLOADS]
     baseline = results[0]
     assert baseline.vs_baseline == 1.0
     for result in results:
         assert result.body_steps > 0 and result.seconds > 0.0
-        assert result.rate == pytest.approx(result.body_steps / result.seconds)
-        assert result.vs_baseline == pytest.approx(result.rate / baseline.rate)
-        assert result.vs_realtime == pytest.approx(result.rate / LANDBLOCK_RATE)
+        assert result.steps_per_s == pytest.approx(result.body_steps / result.seconds)
+        assert result.vs_baseline == pytest.approx(result.steps_per_s / baseline.steps_per_s)
+        assert result.vs_realtime == pytest.approx(result.steps_per_s / LANDBLOCK_RATE)
     # 4 walkers stay active: one step per body per 1/30 s at a 30-Hz driver.
-    walkers = next(r for r in results if r.name == "walkers")
+    walkers = next(r for r in results if r.workload == "walkers")
     assert walkers.body_steps == 4 * 15
+
+
+def test_both_engines_take_the_same_steps_and_the_fast_row_says_how() -> None:
+    """With both engines each workload is measured on each; the fast engine's row gives its rate
+    over the reference's in the same run, its compile time, fallback share and memory per body."""
+    results = run_suite(bodies=6, seconds=0.5, engine="both", workloads=["fallers", "hills"])
+    assert [(r.workload, r.engine) for r in results] == [
+        ("baseline", "python"),
+        ("fallers", "reference"),
+        ("fallers", "fast"),
+        ("hills", "reference"),
+        ("hills", "fast"),
+    ]
+    for reference, fast in ((results[1], results[2]), (results[3], results[4])):
+        assert fast.body_steps == reference.body_steps > 0
+        assert fast.fast_vs_reference == pytest.approx(fast.steps_per_s / reference.steps_per_s)
+        assert fast.compile_seconds is not None and fast.compile_seconds > 0.0
+        assert 0.0 <= fast.fallback_share < 1.0
+        assert sum(fast.fallback_reasons.values()) <= fast.body_steps
+        assert fast.memory_per_body is not None and fast.memory_per_body > 0.0
+        assert reference.fast_vs_reference is None and reference.fallback_share is None
+
+
+def test_the_hills_walkers_circle_on_their_own_ground() -> None:
+    """Every hills walker circles within its own 8-m square: nobody meets anybody, so the fast
+    engine covers every step after each walker's start-up link (its AnimDone is the reference's)."""
+    sim = WORKLOADS["hills"][1](30, 3.0, "fast")
+    start = {body.name: body.position.frame.origin.copy() for body in sim.bodies}
+    sim.run()
+    for body in sim.bodies:
+        offset = body.position.frame.origin - start[body.name]
+        assert 0.1 < (offset.x**2 + offset.y**2) ** 0.5 < 4.0, body.name
+        assert body.transient_state & TransientState.ON_WALKABLE
+    counts = sim.physics.counts
+    assert counts.reasons == {"an animation hook": 30}
+    assert counts.reference == 30 and counts.kernel == 30 * 90 - 30
 
 
 def test_the_walkers_actually_walk() -> None:
@@ -51,15 +88,25 @@ def test_the_command_prints_a_table_and_writes_json(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     out_file = tmp_path / "bench.json"
-    assert main(["bench", "--bodies", "3", "--seconds", "0.2", "--json", str(out_file)]) == 0
+    assert main(["bench", "--bodies", "3", "--seconds", "0.2", "--json", str(out_file)]) == 0  # both engines
     out = capsys.readouterr().out
     assert "baseline" in out and "walkers" in out and "fallers" in out and "crowd" in out
     figures = json.loads(out_file.read_text(encoding="utf-8"))
-    assert {f["name"] for f in figures} == {"baseline", "walkers", "fallers", "crowd"}
+    assert {f["workload"] for f in figures["results"]} == {"baseline", *WORKLOADS}
+    assert {f["engine"] for f in figures["results"]} == {"python", "reference", "fast"}
+    for row in figures["results"]:
+        assert {"workload", "engine", "bodies", "steps_per_s"} <= set(row)
 
 
 @pytest.mark.parametrize(
-    ("args", "message"), [(["--bodies", "0"], "--bodies"), (["--seconds", "-1"], "--seconds")]
+    ("args", "message"),
+    [
+        (["--bodies", "0"], "--bodies"),
+        (["--seconds", "-1"], "--seconds"),
+        (["--engine", "warp"], "--engine"),
+        (["--workload", "nope"], "--workload"),
+        (["--engine", "reference", "--bodies", "100000", "--seconds", "10"], "body-seconds"),
+    ],
 )
 def test_bad_arguments_are_one_line_errors(
     args: list[str], message: str, capsys: pytest.CaptureFixture[str]

@@ -85,6 +85,12 @@ BODY = np.dtype(
         ("seq_frame_number", "f8"),
         ("seq_velocity", "f8", 3),
         ("seq_omega", "f8", 3),
+        ("seq_anim_done", "i4"),  # the AnimDone hooks the last quantum queued
+        # -- a step paused for its hooks (the candidate frame, to resume with) --------------------
+        ("paused_quantum", "f8"),
+        ("paused_origin", "f8", 3),
+        ("paused_q", "f8", 4),
+        ("paused_m", "f8", 9),
     ]
 )
 

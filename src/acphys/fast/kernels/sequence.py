@@ -44,6 +44,9 @@ STATUS_DONE = 0
 #: The quantum needs the reference path (a hook to queue, or something the reference raises on);
 #: neither the record nor the offset frame was changed.
 STATUS_REFERENCE = 1
+#: The quantum was played, and queued the AnimDone hook (``seq_anim_done`` times, the only hooks it
+#: queued): the record and the offset frame hold the result; the caller runs the hooks.
+STATUS_ANIM_DONE = 2
 #: ``hooks`` bits: the frame fires something in forward / backward play.
 HOOK_FORWARD = 1
 HOOK_BACKWARD = 2
@@ -335,6 +338,7 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
         return STATUS_REFERENCE, offset_origin, offset_q, offset_m
     frame_number = np.float64(seq.seq_frame_number)
     advances = 0
+    anim_done = 0
 
     # -- update_internal
     while True:
@@ -406,7 +410,7 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
             break
         if first_cyclic != 0:
             # the head of the list is not first_cyclic: the reference queues AnimDone
-            return STATUS_REFERENCE, offset_origin, offset_q, offset_m
+            anim_done += 1
         advances += 1
         if advances > MAX_ADVANCES:
             return STATUS_REFERENCE, offset_origin, offset_q, offset_m
@@ -465,4 +469,5 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
     seq.seq_nodes = np.int8(nodes - drop)
     seq.seq_curr = np.int8(curr - drop)
     seq.seq_first_cyclic = np.int8(first_cyclic - drop)
-    return STATUS_DONE, origin, q, m
+    seq.seq_anim_done = anim_done
+    return (STATUS_ANIM_DONE if anim_done else STATUS_DONE), origin, q, m

@@ -41,7 +41,7 @@ from acphys.fast.kernels.frame import (
     v_normalized,
 )
 from acphys.fast.kernels.grid import grid_place
-from acphys.fast.kernels.sequence import STATUS_DONE, sequence_update
+from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
 from acphys.fast.kernels.sweep import (
     cache_global_curr_center,
@@ -83,6 +83,9 @@ OI_FREE_ROTATE = int(ObjectInfoState.FREE_ROTATE)
 
 # What run_bodies returns with the index it stopped at.
 DONE = 0  # every body from the start index on was updated
+PAUSED = 4  # the body's step queued AnimDone hooks: run them, then resume it (or finish its sweep)
+UNFINISHED = 5  # the paused step's sweep must run on the reference path
+RESUMED = 6  # the paused step is finished; the index is the next body
 FALLBACK = 1  # the body at the index must be updated on the reference path
 GROW = 2  # a cell's shadow list is full (counters[GROW_CELL]); grow it and call again from the index
 LOG_FULL = 3  # the trace log is full; write it out and call again from the index
@@ -340,7 +343,8 @@ def update_physics_internal(b, quantum, origin, q, m):
 def update_position_internal(w, b, quantum):
     """The candidate frame: root motion (the sequence played into an offset frame), scaled on
     walkable ground, combined onto the body's frame, then integrated. ``(status, origin, q, m)``:
-    status 1 when the sequence would queue a hook (the reference path plays it).
+    the sequence's status (``STATUS_REFERENCE``, returned at once: a frame hook the reference path
+    plays; ``STATUS_ANIM_DONE``: AnimDone hooks for ``process_hooks``, which the caller runs).
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_position_internal` and
     :meth:`acphys.part_array.PartArray.update`.
@@ -351,9 +355,10 @@ def update_position_internal(w, b, quantum):
     o = (0.0, 0.0, 0.0)
     oq = (1.0, 0.0, 0.0, 0.0)
     om = identity_m
+    status = STATUS_DONE
     if not b.state & PS_HIDDEN:
         status, o, oq, om = sequence_update(b, w[6], w[7], w[8], quantum, o, oq, om)
-        if status != STATUS_DONE:
+        if status == STATUS_REFERENCE:
             return status, o, oq, om
         factor = b.scale if b.transient & TS_ON_WALKABLE else 0.0
         o = (f32(o[0] * factor), f32(o[1] * factor), f32(o[2] * factor))
@@ -362,7 +367,7 @@ def update_position_internal(w, b, quantum):
     )
     if not b.state & PS_HIDDEN:
         origin, q, m = update_physics_internal(b, quantum, origin, q, m)
-    return STATUS_DONE, origin, q, m
+    return status, origin, q, m
 
 
 # -- the sweep and the commit ----------------------------------------------------------------------
@@ -564,7 +569,9 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
 
 @njit(cache=True, _nrt=False)
 def update_object_internal(w, tr, i, quantum, moves, counters, journal):
-    """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
+    """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``;
+    status ``PAUSED`` when the candidate's quantum queued AnimDone hooks: the candidate is kept in
+    the record (``paused_*``) for :func:`move_to_candidate` once the hooks have run.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (a covered body has no
     managers to tick).
@@ -572,15 +579,34 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal):
     """
     bodies = w[0]
     b = bodies[i]
-    events = 0
     if not b.transient & TS_ACTIVE:
-        return 0, events
+        return 0, 0
     if b.cell < 0:
-        return 0, events
+        return 0, 0
     b.jumped_this_frame = False
     status, origin, q, m = update_position_internal(w, b, quantum)
-    if status != STATUS_DONE:
-        return bail(tr, R_HOOK), events
+    if status == STATUS_REFERENCE:
+        return bail(tr, R_HOOK), 0
+    if status == STATUS_ANIM_DONE:
+        b.paused_quantum = quantum
+        put(b.paused_origin, origin)
+        put(b.paused_q, q)
+        put(b.paused_m, m)
+        return PAUSED, 0
+    return move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal)
+
+
+@njit(cache=True, _nrt=False)
+def move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal):
+    """The second half of an active step: sweep to the candidate and commit (or keep the origin).
+    Returns ``(status, events)``.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj.move_to_candidate` (a covered body has no
+    managers to tick).
+    Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
+    """
+    b = w[0][i]
+    events = 0
     if (
         abs(origin[0] - b.origin[0]) <= EPSILON
         and abs(origin[1] - b.origin[1]) <= EPSILON
@@ -630,6 +656,19 @@ def _log_step(log, counters, b, i, t, quantum, events):
 
 
 @njit(cache=True, _nrt=False)
+def _step_taken(w, i, clock, step, events, tracing, log, counters):
+    """The tail of ``_run_quantum``: the step is counted, and recorded with the events the object
+    held before it."""
+    counters[STEPS] += 1
+    b = w[0][i]
+    if b.step_events:
+        events |= EVENT_PENDING
+        b.step_events = False
+    if tracing:
+        _log_step(log, counters, b, i, clock[1], step, events)
+
+
+@njit(cache=True, _nrt=False)
 def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal):
     """``update_object``'s slice: advance the physics timer, step with the float32 quantum.
 
@@ -640,19 +679,14 @@ def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journa
     status, events = update_object_internal(w, tr, i, step, moves, counters, journal)
     if status != 0:
         return status
-    counters[STEPS] += 1
-    b = w[0][i]
-    if b.step_events:
-        events |= EVENT_PENDING
-        b.step_events = False
-    if tracing:
-        _log_step(log, counters, b, i, clock[1], step, events)
+    _step_taken(w, i, clock, step, events, tracing, log, counters)
     return 0
 
 
 @njit(cache=True, _nrt=False)
 def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
-    """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
+    """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status (a
+    step paused for its hooks only in a one-quantum update; in longer ones it bails).
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object` (a covered body has no parent).
     Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
@@ -684,14 +718,14 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
         while True:
             status = _run_quantum(w, tr, i, MAX_QUANTUM, clock, tracing, log, moves, counters, journal)
             if status != 0:
-                return status
+                return bail(tr, R_HOOK) if status == PAUSED else status
             quantum -= MAX_QUANTUM
             if quantum <= MAX_QUANTUM:
                 break
         if quantum > MIN_QUANTUM:
             status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
             if status != 0:
-                return status
+                return bail(tr, R_HOOK) if status == PAUSED else status
     else:
         status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
         if status != 0:
@@ -701,12 +735,30 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
 
 
 @njit(cache=True, _nrt=False)
+def resume_update(w, tr, i, clock, tracing, log, moves, counters, journal):
+    """Finish body ``i``'s one-quantum update that paused for its hooks: the sweep to the kept
+    candidate, the step's record, ``update_time``. Returns 0 or a status."""
+    b = w[0][i]
+    step = b.paused_quantum
+    origin, q, m = t3(b.paused_origin), t4(b.paused_q), t9(b.paused_m)
+    status, events = move_to_candidate(w, tr, i, step, origin, q, m, moves, counters, journal)
+    if status != 0:
+        return status
+    _step_taken(w, i, clock, step, events, tracing, log, counters)
+    b.update_time = clock[1]
+    return 0
+
+
+@njit(cache=True, _nrt=False)
 def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks, tr_array,
-               clock, start, tracing, log, moves, counters, journal, saved, saved_tr):
+               clock, start, resume, tracing, log, moves, counters, journal, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
-    that is not covered or hands its update back, or when a log or a cell's list is full.
-    Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
-    the body to go on from (not started, or rolled back).
+    that is not covered, hands its update back or pauses for its hooks, or when a log or a cell's
+    list is full. With ``resume``, body ``start``'s paused step is finished first.
+    Returns ``(status, index)``: DONE with the number of bodies; RESUMED with the body after the
+    one whose paused step was finished; FALLBACK (the update is the reference path's), UNFINISHED
+    (the paused step's sweep is the reference path's), PAUSED (run its hooks), GROW or LOG_FULL
+    with the body to go on from (rolled back to where it started, or to its pause).
 
     ``clock``: ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
 
@@ -718,7 +770,8 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
     n = len(bodies)
     for i in range(start, n):
         b = bodies[i]
-        if not b.covered:
+        resuming = resume and i == start
+        if not resuming and not b.covered:
             return FALLBACK, i
         if tracing and counters[LOGGED] + MAX_STEPS_PER_UPDATE > log.shape[0]:
             return LOG_FULL, i
@@ -729,7 +782,13 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
         logged, moved, steps, physics_time = counters[LOGGED], counters[MOVES], counters[STEPS], clock[1]
         counters[JOURNAL] = 0
         tr.bail = 0
-        status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal)
+        if resuming:
+            status = resume_update(w, tr, i, clock, tracing, log, moves, counters, journal)
+        else:
+            status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal)
+        if status == PAUSED:
+            b.stale = True
+            return PAUSED, i
         if status != 0:
             counters[REASON] = tr.bail
             _undo(bodies, cells, shadow_pool, journal, counters)
@@ -739,7 +798,9 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
             clock[1] = physics_time
             if status == GROW:
                 return GROW, i
-            return FALLBACK, i
+            return (UNFINISHED if resuming else FALLBACK), i
         b.stale = True
         grid_place(bodies, heads, i)
+        if resuming:
+            return RESUMED, i + 1
     return DONE, n

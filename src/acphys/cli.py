@@ -39,7 +39,7 @@ from acphys.plot import (
 )
 from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenarios, load_scenario
 from acphys.scenario.motion_tables import builtin_motion_table_text, builtin_motion_tables
-from acphys.simulation import Simulation
+from acphys.simulation import ENGINES, Simulation
 from acphys.trace import TraceError, diff_traces
 from acphys.view import TABLE_ROWS, show
 
@@ -82,6 +82,12 @@ def _build_parser() -> argparse.ArgumentParser:
     run.add_argument("--trace", metavar="FILE", help="write a JSON Lines trace of every step")
     run.add_argument("--until", metavar="SECONDS", type=float, help="stop at this time instead")
     run.add_argument("--plot", metavar="PNG", help="draw the run's paths to a PNG (as acphys plot does)")
+    run.add_argument(
+        "--engine",
+        choices=ENGINES,
+        default="reference",
+        help="reference (plain Python, the truth; default) or fast (compiled, the same traces)",
+    )
 
     check = commands.add_parser("check", help="validate a scenario file")
     check.add_argument("scenario")
@@ -162,7 +168,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         console = Console(width=120)  # piped output: do not squeeze the summary into 80 columns
     try:
         if args.command == "run":
-            return _run(console, args.scenario, args.trace, args.until, args.plot)
+            return _run(console, args.scenario, args.trace, args.until, args.plot, args.engine)
         if args.command == "check":
             return _check(console, args.scenario)
         if args.command == "show":
@@ -199,9 +205,14 @@ def _fail(message: str, code: int) -> int:
 
 
 def _run(
-    console: Console, scenario: str | None, trace: str | None, until: float | None, plot: str | None = None
+    console: Console,
+    scenario: str | None,
+    trace: str | None,
+    until: float | None,
+    plot: str | None = None,
+    engine: str = "reference",
 ) -> int:
-    sim = load_scenario(scenario)
+    sim = load_scenario(scenario, engine=engine)
     _warn(sim)
     end = sim.duration if until is None else until
     if not (math.isfinite(end) and end >= 0.0):
@@ -222,6 +233,14 @@ def _run(
         if recorder is not None:
             recorder.detach(sim.bodies)
     console.print(_summary(sim))
+    counts = getattr(sim.physics, "counts", None)
+    if counts is not None:
+        taken = counts.kernel + counts.reference
+        _say(
+            console,
+            f"fast engine: {taken:,} body-steps, {counts.reference:,} of them "
+            f"({100.0 * counts.reference_share:.1f}%) on the reference path",
+        )
     if trace is not None:
         _say(console, f"trace: {trace}")
     if plot is not None:

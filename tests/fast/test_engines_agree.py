@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from acphys.bench import WORKLOADS
 from acphys.fast.differential import compare_engines
 from acphys.scenario import builtin_scenarios, load_scenario, parse_scenario
 from engine_corpus import random_scenarios
@@ -36,4 +37,14 @@ def test_the_kernel_steps_what_it_covers(tmp_path: Path) -> None:
     """Balls dropped and thrown on open terrain are the kernel's from the first step to the last."""
     result = compare_engines(lambda engine: load_scenario("ladder-01-fall", engine=engine), tmp_path)
     assert result.identical
+    assert result.kernel_steps > 0
+
+
+@pytest.mark.parametrize("workload", list(WORKLOADS))
+def test_bench_workloads_agree(workload: str, tmp_path: Path) -> None:
+    """The bench's populations, small: walkers, fallers, a crowd walking into itself, walkers
+    circling over hills, and the mixed landblock with its pillars and house."""
+    build = WORKLOADS[workload][1]
+    result = compare_engines(lambda engine: build(24, 2.0, engine), tmp_path)
+    assert result.identical, f"{workload}: {result.divergence}"
     assert result.kernel_steps > 0

@@ -193,5 +193,17 @@ TRANSITION = np.dtype(
         ("cell_ids", "u4", MAX_CELLS),
         # the kernel's own: why the last step was handed back (acphys.fast.kernels.cells.BAIL_REASONS)
         ("bail", "i4"),
+        # no other body is filed near the whole sweep: every body's find_obj_collisions is OK
+        ("lonely", "u1"),
+        # the last cell list found (find_cell_list is a function of the cell id and the spheres'
+        # x, y and radii): reused while those stay the same
+        ("memo_valid", "u1"),
+        ("memo_cell_id", "u4"),
+        ("memo_num_sphere", "i1"),
+        ("memo_spheres", "f8", (MAX_SPHERES, 3)),
+        ("memo_num_cells", "i4"),
+        ("memo_cells", "i4", MAX_CELLS),
+        ("memo_cell_ids", "u4", MAX_CELLS),
+        ("memo_curr", "i4"),  # the cell holding sphere 0's centre, -1 for none
     ]
 )

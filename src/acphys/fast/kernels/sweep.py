@@ -552,6 +552,30 @@ def body_find_obj_collisions(w, tr, j):
 
 
 @njit(cache=True, _nrt=False)
+def nobody_near(w, tr, x0, y0, x1, y1):
+    """Whether no body but the mover reaches into the landblock-global box ``[x0, x1] × [y0, y1]``
+    (its origin within its reach of the box)."""
+    bodies, heads, grid = w[0], w[4], w[5]
+    reach = grid[MAX_REACH]
+    tx0, tx1 = math.floor((x0 - reach) / TILE), math.floor((x1 + reach) / TILE)
+    ty0, ty1 = math.floor((y0 - reach) / TILE), math.floor((y1 + reach) / TILE)
+    if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > MAX_TILES:
+        return False
+    for tx in range(tx0, tx1 + 1):
+        for ty in range(ty0, ty1 + 1):
+            j = heads[bucket_of(tx, ty)]
+            while j >= 0:
+                other = bodies[j]
+                if j != tr.oi_body:
+                    ox, oy = block_origin(other.cell_id)
+                    x, y, r = ox + other.origin[0], oy + other.origin[1], other.reach
+                    if x0 - r <= x <= x1 + r and y0 - r <= y <= y1 + r:
+                        return False
+                j = other.grid_next
+    return True
+
+
+@njit(cache=True, _nrt=False)
 def _asks(bodies, tr, j, k):
     """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j``: shadowed there, not the
     mover, not held."""
@@ -581,6 +605,8 @@ def find_obj_collisions(w, tr, k):
     cell = cells[k]
     if cell.num_others:
         return bail(tr, R_STATIC)  # a static object's shapes are the reference's
+    if tr.lonely:
+        return OK
     x0, y0 = block_origin(tr.check_cell_id)
     reach = grid[MAX_REACH]
     low_x = low_y = math.inf
@@ -654,12 +680,21 @@ def find_cell_list(w, tr, want_cell):
 
     Port of :meth:`acphys.world.obj_cell.ObjCell.find_cell_list` for an outdoor ``check_pos``
     (land cells have no transit cells of their own beyond ``add_all_outside_cells``; a cell with
-    a building is uncovered).
+    a building is uncovered). The list is a function of ``check_pos``'s cell id and the spheres'
+    x, y and radii alone, so the last one found is reused while they stay the same (the z of a
+    step-down or a landing does not change it).
     Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)
     """
     cells, landblock_index = w[1], w[2]
-    cell_array_clear(tr)
     cell_id = tr.check_cell_id
+    if _memo_matches(tr):
+        tr.num_cells = tr.memo_num_cells
+        for i in range(tr.num_cells):
+            tr.cells[i] = tr.memo_cells[i]
+            tr.cell_ids[i] = tr.memo_cell_ids[i]
+        tr.added_outside = True
+        return tr.memo_curr if want_cell else -1
+    cell_array_clear(tr)
     if (cell_id & 0xFFFF) >= 0x100 or not add_all_outside_cells(tr, landblock_index, cell_id):
         tr.bail = R_CELL
         return -2
@@ -672,14 +707,45 @@ def find_cell_list(w, tr, want_cell):
         tr.bail = R_CELL
         return -2
     curr = -1
-    if want_cell:
-        for i in range(tr.num_cells):
-            k = tr.cells[i]
-            ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
-            px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
-            if point_in_cell(cells, k, px, py):
-                curr = k
-    return curr
+    for i in range(tr.num_cells):
+        k = tr.cells[i]
+        ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
+        px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
+        if point_in_cell(cells, k, px, py):
+            curr = k
+    _memo_store(tr, curr)
+    return curr if want_cell else -1
+
+
+@njit(cache=True, _nrt=False)
+def _memo_matches(tr):
+    """Whether the last cell list found holds for ``check_pos``'s cell and spheres."""
+    if not tr.memo_valid or tr.memo_cell_id != tr.check_cell_id or tr.memo_num_sphere != tr.num_sphere:
+        return False
+    for s in range(tr.num_sphere):
+        if (
+            tr.memo_spheres[s, 0] != tr.global_sphere[s, 0]
+            or tr.memo_spheres[s, 1] != tr.global_sphere[s, 1]
+            or tr.memo_spheres[s, 2] != tr.global_sphere[s, 3]
+        ):
+            return False
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def _memo_store(tr, curr):
+    tr.memo_valid = True
+    tr.memo_cell_id = tr.check_cell_id
+    tr.memo_num_sphere = tr.num_sphere
+    for s in range(tr.num_sphere):
+        tr.memo_spheres[s, 0] = tr.global_sphere[s, 0]
+        tr.memo_spheres[s, 1] = tr.global_sphere[s, 1]
+        tr.memo_spheres[s, 2] = tr.global_sphere[s, 3]
+    tr.memo_num_cells = tr.num_cells
+    for i in range(tr.num_cells):
+        tr.memo_cells[i] = tr.cells[i]
+        tr.memo_cell_ids[i] = tr.cell_ids[i]
+    tr.memo_curr = curr
 
 
 @njit(cache=True, _nrt=False)

@@ -40,12 +40,13 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalized,
 )
-from acphys.fast.kernels.grid import grid_place
+from acphys.fast.kernels.grid import block_origin, grid_place
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
 from acphys.fast.kernels.sweep import (
     cache_global_curr_center,
     find_transitional_position,
+    nobody_near,
     set_sliding_normal,
     t3,
     t4,
@@ -374,6 +375,24 @@ def update_position_internal(w, b, quantum):
 
 
 @njit(cache=True, _nrt=False)
+def _lonely_sweep(w, tr, b, end):
+    """Whether no other body is filed near anywhere this sweep can take the spheres. Across the
+    ground, a sweep moves its candidate only along its steps (bent, never lengthened, by the
+    contact plane and the sliding normal), back towards where it was (rollbacks, edge slides),
+    or along a crease by less than a step (cliff slides); lifts, landings and steps up and down
+    are vertical. So the spheres stay within the box around the path's two ends widened by the
+    body's reach and the path's length (and half a metre). Not retail: a shortcut past
+    ``find_obj_collisions``, whose every answer is then OK (:func:`~acphys.fast.kernels.sweep.
+    nobody_near`)."""
+    x0, y0 = block_origin(b.cell_id)
+    bx, by, ex, ey = x0 + b.origin[0], y0 + b.origin[1], x0 + end[0], y0 + end[1]
+    widen = b.reach + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
+    return nobody_near(
+        w, tr, min(bx, ex) - widen, min(by, ey) - widen, max(bx, ex) + widen, max(by, ey) + widen
+    )
+
+
+@njit(cache=True, _nrt=False)
 def transition(w, tr, i, origin, q, m):
     """Sweep body ``i`` from where it is to the candidate: 1 found, 0 not, BAIL.
 
@@ -442,6 +461,7 @@ def transition(w, tr, i, origin, q, m):
     put(tr.curr_m, b.m)
     cache_global_curr_center(tr)
     tr.insert_type = 0
+    tr.lonely = _lonely_sweep(w, tr, b, origin)
     if ts & TS_STATIONARY_STUCK:
         tr.frames_stationary_fall = 3
     elif ts & TS_STATIONARY_STOP:

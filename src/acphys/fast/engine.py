@@ -302,6 +302,9 @@ class FastPhysics(Physics):
         touched.discard(-1)
         for k in touched:
             arrays.set_shadow_list(k, shadow_entries(arrays, k, arrays.land_cells[k], self._index))
+        if body.detection_manager is not None:  # its detection may have watched or left cells
+            arrays.refresh_uncovered()
+            self._transition["memo_valid"] = False
         others = {i} | partners
         for j in sorted(others):
             self._load(j)

@@ -75,6 +75,11 @@ class WorldArrays:
             start = int(self.cells[i]["shadow_start"])
             self.shadow_pool[start : start + len(entries)] = entries
 
+    def refresh_uncovered(self) -> None:
+        """Mark again the cells the kernel cannot sweep through (global detection adds and drops
+        voyeurs as it runs)."""
+        self.cells["uncovered"] = [_uncovered(cell) for cell in self.land_cells]
+
     def set_shadow_list(self, k: int, entries: Sequence[int]) -> None:
         """Make ``entries`` kernel cell ``k``'s shadow list (growing its room as needed)."""
         while len(entries) > self.cells[k]["shadow_capacity"]:

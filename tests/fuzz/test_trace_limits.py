@@ -75,28 +75,49 @@ class Run:
     memory: int
 
 
+#: Starts the command it is given and writes the command's peak memory (``ru_maxrss``, KiB) to
+#: the file in ``ACPHYS_PEAK_FILE``, exiting with its exit status. Linux counts a process's peak
+#: from before its ``exec``, that is the image of whatever forked it: a command forked from this
+#: small launcher is measured as itself, not as the test process (which may hold a compiler).
+_LAUNCHER = """
+import os, sys
+pid = os.posix_spawn(sys.argv[1], sys.argv[1:], os.environ)
+_, status, usage = os.wait4(pid, 0)
+with open(os.environ["ACPHYS_PEAK_FILE"], "w") as peak:
+    peak.write(str(usage.ru_maxrss))
+sys.exit(os.waitstatus_to_exitcode(status) % 256)
+"""
+
+
 def acphys(*args: str | Path, cwd: Path, code: str | None = None) -> Run:
     """``acphys ARGS`` (or ``python -c CODE ARGS``) as a subprocess, timed and its peak memory
-    measured by ``os.wait4``; one that outlives :data:`TIME_LIMIT` is killed and fails the test."""
+    measured by ``os.wait4`` (through :data:`_LAUNCHER`); one that outlives :data:`TIME_LIMIT` is
+    killed and fails the test."""
     command = [sys.executable, "-m", "acphys.cli"] if code is None else [sys.executable, "-c", code]
-    out, err = cwd / "stdout.txt", cwd / "stderr.txt"
+    out, err, peak = cwd / "stdout.txt", cwd / "stderr.txt", cwd / "peak.txt"
     start = time.monotonic()
     with out.open("wb") as stdout, err.open("wb") as stderr:
-        process = subprocess.Popen([*command, *map(str, args)], stdout=stdout, stderr=stderr, cwd=cwd)
+        process = subprocess.Popen(
+            [sys.executable, "-c", _LAUNCHER, *command, *map(str, args)],
+            stdout=stdout,
+            stderr=stderr,
+            cwd=cwd,
+            env={**os.environ, "ACPHYS_PEAK_FILE": str(peak)},
+            start_new_session=True,
+        )
     while True:
-        pid, status, usage = os.wait4(process.pid, os.WNOHANG)
+        pid, status, _usage = os.wait4(process.pid, os.WNOHANG)
         seconds = time.monotonic() - start
         if pid:
             break
         if seconds > TIME_LIMIT:
-            os.kill(process.pid, signal.SIGKILL)
+            os.killpg(process.pid, signal.SIGKILL)
             os.wait4(process.pid, 0)
             pytest.fail(f"acphys {args} ran for more than {TIME_LIMIT} s")
         time.sleep(0.01)
     process.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
-    run = Run(
-        process.returncode, out.read_text("utf-8"), err.read_text("utf-8"), seconds, usage.ru_maxrss * 1024
-    )
+    memory = int(peak.read_text("utf-8")) * 1024
+    run = Run(process.returncode, out.read_text("utf-8"), err.read_text("utf-8"), seconds, memory)
     assert run.memory < MEMORY_LIMIT, f"acphys {args}: {run.memory / 2**20:.0f} MiB"
     assert run.seconds < TIME_LIMIT
     return run

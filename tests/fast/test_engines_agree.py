@@ -8,6 +8,7 @@ reference path agreeing with itself.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -48,3 +49,24 @@ def test_bench_workloads_agree(workload: str, tmp_path: Path) -> None:
     result = compare_engines(lambda engine: build(24, 2.0, engine), tmp_path)
     assert result.identical, f"{workload}: {result.divergence}"
     assert result.kernel_steps > 0
+
+
+def test_a_cell_that_fills_up_agrees(tmp_path: Path) -> None:
+    """Forty balls thrown from a ring 40 m across into the landblock's middle cell: its shadow
+    list outgrows the room it started with (the engine gives it more, the kernel goes on), and
+    the balls land among each other (a ball within another's reach is the reference path's)."""
+    ring = [(math.cos(i * 0.157), math.sin(i * 0.157)) for i in range(40)]
+    balls = "".join(
+        f'[[body]]\nname = "b{i}"\nsetup = "ball"\nlandblock = "0xA9B4"\n'
+        f"origin = [{84.0 + 20.0 * x:.3f}, {84.0 + 20.0 * y:.3f}, 52.0]\n"
+        f'state = ["gravity", "report_collisions"]\nvelocity = [{-9.0 * x:.3f}, {-9.0 * y:.3f}, 6.0]\n'
+        for i, (x, y) in enumerate(ring)
+    )
+    text = (
+        '[scenario]\nname = "fill"\nduration = 3.0\ndriver_hz = 30.0\n'
+        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n'
+        "[setup.ball]\nspheres = [{ center = [0, 0, 0.25], radius = 0.25 }]\n" + balls
+    )
+    result = compare_engines(lambda engine: parse_scenario(text, "<fill>", engine=engine), tmp_path)
+    assert result.identical, result.divergence
+    assert result.kernel_steps > result.reference_steps > 0

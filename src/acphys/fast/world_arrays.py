@@ -48,6 +48,8 @@ class WorldArrays:
     others: list[PhysicsObj] = field(default_factory=list)
     #: Each other object's shadow entries by kernel cell (they never move).
     other_shadows: dict[tuple[int, int], ShadowObj] = field(default_factory=dict)
+    #: ``id(object)`` to its index in ``others``.
+    other_index: dict[int, int] = field(default_factory=dict)
 
     def cell_index(self, cell_id: int) -> int:
         """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a loaded block)."""
@@ -64,16 +66,20 @@ class WorldArrays:
         return self.shadow_pool[start : start + int(cell["num_shadows"])]
 
     def grow(self, k: int) -> None:
-        """Give kernel cell ``k`` twice its shadow capacity (the kernel asked for room)."""
-        capacity = self.cells["shadow_capacity"].copy()
+        """Give kernel cell ``k`` twice its shadow capacity (the kernel asked for room): a new pool,
+        every list copied to its new place."""
+        cells = self.cells
+        old_start, old_pool = cells["shadow_start"].copy(), self.shadow_pool
+        capacity = cells["shadow_capacity"].copy()
         capacity[k] *= 2
-        old = [self.shadow_list(i).copy() for i in range(len(self.cells))]
-        self.cells["shadow_start"] = np.concatenate(([0], np.cumsum(capacity)[:-1]))
-        self.cells["shadow_capacity"] = capacity
-        self.shadow_pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
-        for i, entries in enumerate(old):
-            start = int(self.cells[i]["shadow_start"])
-            self.shadow_pool[start : start + len(entries)] = entries
+        start = np.concatenate(([0], np.cumsum(capacity)[:-1])).astype(np.int32)
+        pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
+        for i in np.flatnonzero(cells["num_shadows"]).tolist():
+            count = int(cells[i]["num_shadows"])
+            pool[start[i] : start[i] + count] = old_pool[old_start[i] : old_start[i] + count]
+        cells["shadow_start"] = start
+        cells["shadow_capacity"] = capacity
+        self.shadow_pool = pool
 
     def refresh_uncovered(self) -> None:
         """Mark again the cells the kernel cannot sweep through (global detection adds and drops
@@ -120,18 +126,25 @@ def build_world_arrays(world: World, bodies: Sequence[PhysicsObj]) -> WorldArray
                 n = poly.plane.N
                 record["plane"][p] = (n.x, n.y, n.z, poly.plane.d)
             record["uncovered"] = _uncovered(cell)
-    cells["shadow_capacity"] = INITIAL_SHADOW_CAPACITY
-    cells["shadow_start"] = np.arange(len(cells), dtype=np.int32) * INITIAL_SHADOW_CAPACITY
-    arrays = WorldArrays(
-        cells,
-        landblock_index,
-        np.full(len(cells) * INITIAL_SHADOW_CAPACITY, -(2**31), dtype=np.int32),
-        land_cells,
-    )
     index = {id(body): i for i, body in enumerate(bodies)}
-    for k, cell in enumerate(land_cells):
-        arrays.set_shadow_list(k, shadow_entries(arrays, k, cell, index))
+    arrays = WorldArrays(cells, landblock_index, np.zeros(0, dtype=np.int32), land_cells)
+    lists = [shadow_entries(arrays, k, cell, index) for k, cell in enumerate(land_cells)]
+    capacity = np.array([_room(len(entries)) for entries in lists], dtype=np.int32)
+    cells["shadow_capacity"] = capacity
+    cells["shadow_start"] = np.concatenate(([0], np.cumsum(capacity)[:-1])) if len(capacity) else capacity
+    arrays.shadow_pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
+    for k, entries in enumerate(lists):
+        arrays.set_shadow_list(k, entries)
     return arrays
+
+
+def _room(count: int) -> int:
+    """The shadow slots a cell holding ``count`` shadows starts with: twice as many, at least
+    ``INITIAL_SHADOW_CAPACITY``, a power of two."""
+    room = INITIAL_SHADOW_CAPACITY
+    while room < 2 * count:
+        room *= 2
+    return room
 
 
 def shadow_entries(arrays: WorldArrays, k: int, cell: ObjCell, index: dict[int, int]) -> list[int]:
@@ -142,9 +155,9 @@ def shadow_entries(arrays: WorldArrays, k: int, cell: ObjCell, index: dict[int, 
         body = shadow.physobj
         number = index.get(id(body))
         if number is None:
-            if body not in arrays.others:
+            other = arrays.other_index.setdefault(id(body), len(arrays.others))
+            if other == len(arrays.others):
                 arrays.others.append(body)
-            other = arrays.others.index(body)
             arrays.other_shadows[(other, k)] = shadow
             number = -1 - other
         entries.append(number)

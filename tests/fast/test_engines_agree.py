@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from acphys.bench import WORKLOADS
+from acphys.fast import engine as engine_module
 from acphys.fast.differential import compare_engines
 from acphys.scenario import builtin_scenarios, load_scenario, parse_scenario
 from engine_corpus import random_scenarios
@@ -70,3 +71,16 @@ def test_a_cell_that_fills_up_agrees(tmp_path: Path) -> None:
     result = compare_engines(lambda engine: parse_scenario(text, "<fill>", engine=engine), tmp_path)
     assert result.identical, result.divergence
     assert result.kernel_steps > result.reference_steps > 0
+
+
+def test_full_logs_are_written_out_and_the_run_goes_on(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With room for only a few trace rows and cell moves, the kernel stops again and again to
+    have them written out (the trace, and the bodies' moves into their cells' object lists); the
+    run is the reference's all the same."""
+    monkeypatch.setattr(engine_module, "LOG_ROWS", 24)
+    build = WORKLOADS["hills"][1]
+    result = compare_engines(lambda engine: build(60, 3.0, engine), tmp_path)
+    assert result.identical, result.divergence
+    assert result.reference_steps == 0 and result.kernel_steps == 60 * 90

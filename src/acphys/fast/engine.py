@@ -201,6 +201,8 @@ class FastPhysics(Physics):
             start = stop
             if status == kernels.GROW:
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
+            elif status == kernels.LOG_FULL:  # the trace log was written out above; the moves too:
+                self._replay_moves()
             elif status == kernels.PAUSED:
                 self._run_hooks(start)
                 resume = True
@@ -331,15 +333,7 @@ class FastPhysics(Physics):
             return
         arrays = self._arrays
         transition_to_pool(self._transition, arrays, self.world)
-        for body_index, old, new in self._moves[:moves].tolist():
-            body = self._bodies[body_index]
-            if old >= 0:
-                arrays.land_cells[old].remove_object(body)
-            if new >= 0:
-                cell = arrays.land_cells[new]
-                cell.add_object(body)
-                body.cell = cell
-        self._counters[kernels.MOVES] = 0
+        self._replay_moves()
         for i in stale.tolist():
             record = self._records[i]
             body = self._bodies[i]
@@ -360,6 +354,23 @@ class FastPhysics(Physics):
         for k in np.flatnonzero(cells["dirty"]).tolist():
             self._write_cell(k)
         cells["dirty"] = False
+
+    def _replay_moves(self) -> None:
+        """Move the bodies that changed cells into their cells' object lists, in the order they
+        moved (the lists' order is retail's: ``add_object`` appends, ``remove_object`` swaps the
+        last object in)."""
+        assert self._arrays is not None
+        land_cells = self._arrays.land_cells
+        moves = int(self._counters[kernels.MOVES])
+        for body_index, old, new in self._moves[:moves].tolist():
+            body = self._bodies[body_index]
+            if old >= 0:
+                land_cells[old].remove_object(body)
+            if new >= 0:
+                cell = land_cells[new]
+                cell.add_object(body)
+                body.cell = cell
+        self._counters[kernels.MOVES] = 0
 
     def sync_objects(self) -> None:
         """Write the kernel's changes back, and read the objects again before the next run (the

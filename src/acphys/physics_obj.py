@@ -279,48 +279,41 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             if self.transient_state & TS.CHECK_ETHEREAL:
                 self.set_ethereal(False, send_event=False)
             self.jumped_this_frame = False
+
             new_pos = Position(self.position.objcell_id)
             self.update_position_internal(quantum, new_pos.frame)
-            self.move_to_candidate(quantum, new_pos)
+
+            if self.part_array is not None and self.part_array.get_num_sphere():
+                if new_pos.frame.origin == self.position.frame.origin:
+                    self._keep_origin(new_pos.frame)
+                else:
+                    self._align_heading(new_pos.frame)
+                    transit = self.transition(self.position, new_pos)
+                    if transit is not None:
+                        offset = self.position.get_offset(transit.sphere_path.curr_pos)
+                        self.cached_velocity = offset / quantum
+                        self.set_position_internal(transit)
+                    else:
+                        self._keep_origin(new_pos.frame)
+            else:
+                if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
+                    self.transient_state &= ~TS.ACTIVE
+                self._keep_origin(new_pos.frame)
+
+            if self.detection_manager is not None:
+                self.detection_manager.check_detection()
+            if self.target_manager is not None:
+                self.target_manager.handle_targetting()
+            if self.movement_manager is not None:
+                self.movement_manager.use_time()
+            if self.part_array is not None:
+                self.part_array.handle_movement()
+            if self.position_manager is not None:
+                self.position_manager.use_time()
         if self.particle_manager is not None:
             self.particle_manager.update_particles()
         if self.script_manager is not None:
             self.script_manager.update_scripts()
-
-    def move_to_candidate(self, quantum: float, new_pos: Position) -> None:
-        """The second half of an active step, after the candidate frame (and its hooks): sweep to
-        ``new_pos`` and commit (or keep the origin), then tick the managers.
-
-        Part of UpdateObjectInternal (acclient.c:322770-322860); the fast engine resumes a step
-        here after running the hooks a step queued on the reference path.
-        """
-        if self.part_array is not None and self.part_array.get_num_sphere():
-            if new_pos.frame.origin == self.position.frame.origin:
-                self._keep_origin(new_pos.frame)
-            else:
-                self._align_heading(new_pos.frame)
-                transit = self.transition(self.position, new_pos)
-                if transit is not None:
-                    offset = self.position.get_offset(transit.sphere_path.curr_pos)
-                    self.cached_velocity = offset / quantum
-                    self.set_position_internal(transit)
-                else:
-                    self._keep_origin(new_pos.frame)
-        else:
-            if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
-                self.transient_state &= ~TS.ACTIVE
-            self._keep_origin(new_pos.frame)
-
-        if self.detection_manager is not None:
-            self.detection_manager.check_detection()
-        if self.target_manager is not None:
-            self.target_manager.handle_targetting()
-        if self.movement_manager is not None:
-            self.movement_manager.use_time()
-        if self.part_array is not None:
-            self.part_array.handle_movement()
-        if self.position_manager is not None:
-            self.position_manager.use_time()
 
     def _keep_origin(self, candidate: Frame) -> None:
         """Commit only the candidate's rotation and zero ``cached_velocity``.

@@ -34,9 +34,6 @@ from acphys.fast.sync import load_body, store_body
 from acphys.fast.world_arrays import WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id
-from acphys.math.frame import Frame
-from acphys.math.position import Position
-from acphys.math.vector import Vector3
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
@@ -82,6 +79,8 @@ class FastPhysics(Physics):
         self._moves = np.zeros((LOG_ROWS, 3), dtype=np.int32)
         self._counters = np.zeros(kernels.NUM_COUNTERS, dtype=np.int64)
         self._journal = np.zeros((kernels.JOURNAL_ROWS, 3), dtype=np.int64)
+        #: AnimDone hooks the kernel's steps queued: (body, count), run after it returns.
+        self._owed = np.zeros((LOG_ROWS, 2), dtype=np.int32)
         self._index: dict[int, int] = {}
         #: Why each body is not covered ("" when it is): the first uncovered_reason.
         self._uncovered: list[str] = []
@@ -170,7 +169,6 @@ class FastPhysics(Physics):
         self._clock[3] = 1.0 if self.world.activity_cull else 0.0
         tracing = self._writer is not None
         start = 0
-        resume = False
         while start < len(self._bodies):
             status, stop = kernels.run_bodies(
                 self._records,
@@ -185,79 +183,46 @@ class FastPhysics(Physics):
                 self._transition,
                 self._clock,
                 start,
-                resume,
                 tracing,
                 self._log,
                 self._moves,
                 self._counters,
                 self._journal,
+                self._owed,
                 self._saved_body,
                 self._saved_transition,
             )
             self.counts.kernel += int(self._counters[kernels.STEPS])
             self._counters[kernels.STEPS] = 0
             self._write_log()
-            resume = resume and stop == start and status in (kernels.GROW, kernels.LOG_FULL)
+            self._run_owed_hooks()
             start = stop
             if status == kernels.GROW:
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
-            elif status == kernels.LOG_FULL:  # the trace log was written out above; the moves too:
+            elif status == kernels.LOG_FULL:  # the trace log and the hooks are done above; the moves:
                 self._replay_moves()
-            elif status == kernels.PAUSED:
-                self._run_hooks(start)
-                resume = True
-            elif status == kernels.RESUMED:
-                self._after_resumed(start - 1)
-            elif status == kernels.UNFINISHED:
-                self._count_reason(start)
-                self._finish_on_reference(start)
-                start += 1
             elif status == kernels.FALLBACK:
                 self._count_reason(start)
                 self._reference_update(start)
                 start += 1
         self.world.physics_time = float(self._clock[1])
 
-    def _run_hooks(self, i: int) -> None:
-        """Body ``i``'s step paused for the AnimDone hooks its quantum queued: run them
-        (``process_hooks``, the end of ``update_position_internal``). They reach only the body's
-        motion-table manager and motion interpreter (``MotionTableManager::AnimationDone`` →
-        ``CMotionInterp::MotionDone``), which the kernel never touches, so nothing is written back
-        first; the kernel then finishes the step (:meth:`_after_resumed`)."""
-        body = self._bodies[i]
-        self.world.physics_time = float(self._clock[1])
-        body.anim_hooks.extend([ANIM_DONE_HOOK] * int(self._records[i]["seq_anim_done"]))
-        body.process_hooks()
-
-    def _after_resumed(self, i: int) -> None:
-        """The kernel finished body ``i``'s paused step. Its last act, the motion table's tick
-        (``CPartArray::HandleMovement``), has work when the hooks left a motion with no animation
-        to wait for: it runs here, on the reference path, as the step's end."""
-        parts = self._bodies[i].part_array
-        table = parts.motion_table_manager if parts is not None else None
-        if table is not None and table.pending_animations and not table.pending_animations[0].num_anims:
-            parts.handle_movement()
-
-    def _finish_on_reference(self, i: int) -> None:
-        """Finish body ``i``'s paused step on the reference path: the sweep to its candidate, the
-        commit and the managers (``move_to_candidate``), then the rest of its update."""
-        record = self._records[i]
-        body = self._bodies[i]
-        self.flush()
-        self.world.physics_time = float(self._clock[1])
-        partners = self._partners(body)
-        frame = Frame()
-        frame.origin = Vector3(*record["paused_origin"].tolist())
-        frame.qw, frame.qx, frame.qy, frame.qz = record["paused_q"].tolist()
-        frame.m[:] = record["paused_m"].tolist()
-        step = float(record["paused_quantum"])
-        body.move_to_candidate(step, Position(body.position.objcell_id, frame))
-        if body.observer is not None:
-            body.observer(body, step)
-        body.step_events.clear()
-        body.update_time = self.world.physics_time
-        self.counts.reference += 1
-        self._reload_after(i, partners | self._partners(body))
+    def _run_owed_hooks(self) -> None:
+        """Run the AnimDone hooks the kernel's steps queued (``process_hooks``, the end of
+        ``update_position_internal``), in the order the steps queued them, and the motion table's
+        tick after (``CPartArray::HandleMovement``, the step's last act) when they left a motion with
+        no animation to wait for. Both reach only the body's motion-table manager and motion
+        interpreter (``MotionTableManager::AnimationDone`` → ``CMotionInterp::MotionDone``), which
+        no step reads and the kernel never touches, so they run when the kernel returns."""
+        for i, count in self._owed[: int(self._counters[kernels.OWED])].tolist():
+            body = self._bodies[i]
+            body.anim_hooks.extend([ANIM_DONE_HOOK] * count)
+            body.process_hooks()
+            parts = body.part_array
+            table = parts.motion_table_manager if parts is not None else None
+            if table is not None and table.pending_animations and not table.pending_animations[0].num_anims:
+                parts.handle_movement()
+        self._counters[kernels.OWED] = 0
 
     def _count_reason(self, i: int) -> None:
         record = self._records[i]
@@ -452,6 +417,7 @@ class FastPhysics(Physics):
         """The bytes the kernel's arrays take: records, cells, shadow lists, grid, animations."""
         arrays = self._arrays
         held = [self._records, self._grid_heads, self._transition, self._log, self._moves, self._journal]
+        held += [self._owed]
         if arrays is not None:
             held += [arrays.cells, arrays.shadow_pool, arrays.landblock_index]
         held += [self._animations.anims, self._animations.pos_frames, self._animations.hooks]

@@ -86,11 +86,6 @@ BODY = np.dtype(
         ("seq_velocity", "f8", 3),
         ("seq_omega", "f8", 3),
         ("seq_anim_done", "i4"),  # the AnimDone hooks the last quantum queued
-        # -- a step paused for its hooks (the candidate frame, to resume with) --------------------
-        ("paused_quantum", "f8"),
-        ("paused_origin", "f8", 3),
-        ("paused_q", "f8", 4),
-        ("paused_m", "f8", 9),
     ]
 )
 

@@ -84,9 +84,6 @@ OI_FREE_ROTATE = int(ObjectInfoState.FREE_ROTATE)
 
 # What run_bodies returns with the index it stopped at.
 DONE = 0  # every body from the start index on was updated
-PAUSED = 4  # the body's step queued AnimDone hooks: run them, then resume it (or finish its sweep)
-UNFINISHED = 5  # the paused step's sweep must run on the reference path
-RESUMED = 6  # the paused step is finished; the index is the next body
 FALLBACK = 1  # the body at the index must be updated on the reference path
 GROW = 2  # a cell's shadow list is full (counters[GROW_CELL]); grow it and call again from the index
 LOG_FULL = 3  # the trace log is full; write it out and call again from the index
@@ -98,7 +95,8 @@ MOVES = 2  # rows in the cell-move log
 JOURNAL = 3  # rows in the undo journal
 GROW_CELL = 4
 REASON = 5  # why the last body handed its update back (acphys.fast.kernels.cells.BAIL_REASONS)
-NUM_COUNTERS = 6
+OWED = 6  # rows in the owed-hooks log
+NUM_COUNTERS = 7
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
@@ -588,10 +586,12 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
 
 
 @njit(cache=True, _nrt=False)
-def update_object_internal(w, tr, i, quantum, moves, counters, journal):
-    """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``;
-    status ``PAUSED`` when the candidate's quantum queued AnimDone hooks: the candidate is kept in
-    the record (``paused_*``) for :func:`move_to_candidate` once the hooks have run.
+def update_object_internal(w, tr, i, quantum, moves, counters, journal, owed):
+    """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
+
+    AnimDone hooks the candidate's quantum queued are owed: logged in ``owed`` (body, count) for
+    the engine to run on the reference path after the kernel returns. They reach only the body's
+    motion-table manager and motion interpreter, which no step reads, so they may run late.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (a covered body has no
     managers to tick).
@@ -608,11 +608,12 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal):
     if status == STATUS_REFERENCE:
         return bail(tr, R_HOOK), 0
     if status == STATUS_ANIM_DONE:
-        b.paused_quantum = quantum
-        put(b.paused_origin, origin)
-        put(b.paused_q, q)
-        put(b.paused_m, m)
-        return PAUSED, 0
+        n = counters[OWED]
+        if n >= owed.shape[0]:
+            return bail(tr, R_FULL), 0
+        owed[n, 0] = i
+        owed[n, 1] = b.seq_anim_done
+        counters[OWED] = n + 1
     return move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal)
 
 
@@ -621,8 +622,7 @@ def move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal)
     """The second half of an active step: sweep to the candidate and commit (or keep the origin).
     Returns ``(status, events)``.
 
-    Port of :meth:`acphys.physics_obj.PhysicsObj.move_to_candidate` (a covered body has no
-    managers to tick).
+    Part of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal`.
     Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
     """
     b = w[0][i]
@@ -676,9 +676,17 @@ def _log_step(log, counters, b, i, t, quantum, events):
 
 
 @njit(cache=True, _nrt=False)
-def _step_taken(w, i, clock, step, events, tracing, log, counters):
-    """The tail of ``_run_quantum``: the step is counted, and recorded with the events the object
-    held before it."""
+def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed):
+    """``update_object``'s slice: advance the physics timer, step with the float32 quantum, count
+    the step and record it with the events the object held before it.
+
+    Port of :meth:`acphys.physics_obj.PhysicsObj._run_quantum`.
+    """
+    clock[1] += quantum
+    step = f32(quantum)
+    status, events = update_object_internal(w, tr, i, step, moves, counters, journal, owed)
+    if status != 0:
+        return status
     counters[STEPS] += 1
     b = w[0][i]
     if b.step_events:
@@ -686,27 +694,12 @@ def _step_taken(w, i, clock, step, events, tracing, log, counters):
         b.step_events = False
     if tracing:
         _log_step(log, counters, b, i, clock[1], step, events)
-
-
-@njit(cache=True, _nrt=False)
-def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal):
-    """``update_object``'s slice: advance the physics timer, step with the float32 quantum.
-
-    Port of :meth:`acphys.physics_obj.PhysicsObj._run_quantum`.
-    """
-    clock[1] += quantum
-    step = f32(quantum)
-    status, events = update_object_internal(w, tr, i, step, moves, counters, journal)
-    if status != 0:
-        return status
-    _step_taken(w, i, clock, step, events, tracing, log, counters)
     return 0
 
 
 @njit(cache=True, _nrt=False)
-def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
-    """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status (a
-    step paused for its hooks only in a one-quantum update; in longer ones it bails).
+def update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed):
+    """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object` (a covered body has no parent).
     Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
@@ -736,18 +729,18 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
         return 0
     if quantum > MAX_QUANTUM:
         while True:
-            status = _run_quantum(w, tr, i, MAX_QUANTUM, clock, tracing, log, moves, counters, journal)
+            status = _run_quantum(w, tr, i, MAX_QUANTUM, clock, tracing, log, moves, counters, journal, owed)
             if status != 0:
-                return bail(tr, R_HOOK) if status == PAUSED else status
+                return status
             quantum -= MAX_QUANTUM
             if quantum <= MAX_QUANTUM:
                 break
         if quantum > MIN_QUANTUM:
-            status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
+            status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed)
             if status != 0:
-                return bail(tr, R_HOOK) if status == PAUSED else status
+                return status
     else:
-        status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal)
+        status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed)
         if status != 0:
             return status
     b.update_time = clock[1]
@@ -755,30 +748,12 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal):
 
 
 @njit(cache=True, _nrt=False)
-def resume_update(w, tr, i, clock, tracing, log, moves, counters, journal):
-    """Finish body ``i``'s one-quantum update that paused for its hooks: the sweep to the kept
-    candidate, the step's record, ``update_time``. Returns 0 or a status."""
-    b = w[0][i]
-    step = b.paused_quantum
-    origin, q, m = t3(b.paused_origin), t4(b.paused_q), t9(b.paused_m)
-    status, events = move_to_candidate(w, tr, i, step, origin, q, m, moves, counters, journal)
-    if status != 0:
-        return status
-    _step_taken(w, i, clock, step, events, tracing, log, counters)
-    b.update_time = clock[1]
-    return 0
-
-
-@njit(cache=True, _nrt=False)
 def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks, tr_array,
-               clock, start, resume, tracing, log, moves, counters, journal, saved, saved_tr):
+               clock, start, tracing, log, moves, counters, journal, owed, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
-    that is not covered, hands its update back or pauses for its hooks, or when a log or a cell's
-    list is full. With ``resume``, body ``start``'s paused step is finished first.
-    Returns ``(status, index)``: DONE with the number of bodies; RESUMED with the body after the
-    one whose paused step was finished; FALLBACK (the update is the reference path's), UNFINISHED
-    (the paused step's sweep is the reference path's), PAUSED (run its hooks), GROW or LOG_FULL
-    with the body to go on from (rolled back to where it started, or to its pause).
+    that is not covered or hands its update back, or when a log or a cell's list is full.
+    Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
+    the body to go on from (not started, or rolled back).
 
     ``clock``: ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
 
@@ -790,37 +765,32 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
     n = len(bodies)
     for i in range(start, n):
         b = bodies[i]
-        resuming = resume and i == start
-        if not resuming and not b.covered:
+        if not b.covered:
             return FALLBACK, i
         if tracing and counters[LOGGED] + MAX_STEPS_PER_UPDATE > log.shape[0]:
             return LOG_FULL, i
         if counters[MOVES] + MAX_STEPS_PER_UPDATE > moves.shape[0]:
             return LOG_FULL, i
+        if counters[OWED] + MAX_STEPS_PER_UPDATE > owed.shape[0]:
+            return LOG_FULL, i
         saved[0] = b
         saved_tr[0] = tr
-        logged, moved, steps, physics_time = counters[LOGGED], counters[MOVES], counters[STEPS], clock[1]
+        logged, moved, steps, indebted = counters[LOGGED], counters[MOVES], counters[STEPS], counters[OWED]
+        physics_time = clock[1]
         counters[JOURNAL] = 0
         tr.bail = 0
-        if resuming:
-            status = resume_update(w, tr, i, clock, tracing, log, moves, counters, journal)
-        else:
-            status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal)
-        if status == PAUSED:
-            b.stale = True
-            return PAUSED, i
+        status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed)
         if status != 0:
             counters[REASON] = tr.bail
             _undo(bodies, cells, shadow_pool, journal, counters)
             bodies[i] = saved[0]
             tr_array[0] = saved_tr[0]
-            counters[LOGGED], counters[MOVES], counters[STEPS] = logged, moved, steps
+            counters[LOGGED], counters[MOVES] = logged, moved
+            counters[STEPS], counters[OWED] = steps, indebted
             clock[1] = physics_time
             if status == GROW:
                 return GROW, i
-            return (UNFINISHED if resuming else FALLBACK), i
+            return FALLBACK, i
         b.stale = True
         grid_place(bodies, heads, i)
-        if resuming:
-            return RESUMED, i + 1
     return DONE, n

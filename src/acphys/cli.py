@@ -41,8 +41,11 @@ from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenar
 from acphys.scenario.motion_tables import builtin_motion_table_text, builtin_motion_tables
 from acphys.simulation import ENGINES, Simulation
 from acphys.trace import TraceError, diff_traces
-from acphys.view import TABLE_ROWS, show
+from acphys.view import show
 
+#: The bodies ``acphys run``'s summary lists (rich lays out about a row a millisecond; a run of
+#: thousands of bodies is read from its trace).
+SUMMARY_ROWS = 200
 #: Runs with more driver ticks than this show a progress bar (on a terminal).
 PROGRESS_TICKS = 20_000
 #: The most bodies and simulated seconds ``acphys bench`` takes, and the most of their product: a
@@ -275,15 +278,15 @@ def _say(console: Console, text: str) -> None:
 
 
 def _summary(sim: Simulation) -> Table:
-    """A row per body, for the first ``TABLE_ROWS`` (rich lays out about a row a millisecond: a
+    """A row per body, for the first ``SUMMARY_ROWS`` (rich lays out about a row a millisecond: a
     10,000-body summary would take longer than the run); a caption says how many are left out."""
     bodies = _count(len(sim.bodies), "body", "bodies")
-    left_out = len(sim.bodies) - TABLE_ROWS
-    caption = f"the first {TABLE_ROWS:,} bodies; --trace records them all" if left_out > 0 else None
+    left_out = len(sim.bodies) - SUMMARY_ROWS
+    caption = f"the first {SUMMARY_ROWS:,} bodies; --trace records them all" if left_out > 0 else None
     table = Table(title=Text(one_line(f"{sim.name}: {sim.time:g} s simulated, {bodies}")), caption=caption)
     for column in ("body", "cell", "origin (m)", "heading", "velocity (m/s)", "transient"):
         table.add_column(column, no_wrap=column != "transient")
-    for body in sim.bodies[:TABLE_ROWS]:
+    for body in sim.bodies[:SUMMARY_ROWS]:
         table.add_row(
             Text(one_line(body.name)),
             format_cell_id(body.position.objcell_id),

@@ -318,8 +318,8 @@ def test_the_installed_console_script(tmp_path: Path) -> None:
 def test_the_run_summary_lists_the_first_bodies_and_says_so(
     capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """A summary of 10,000 rows took rich longer than the run: past ``TABLE_ROWS`` it stops."""
-    monkeypatch.setattr("acphys.cli.TABLE_ROWS", 3)
+    """A summary of 10,000 rows took rich longer than the run: past ``SUMMARY_ROWS`` it stops."""
+    monkeypatch.setattr("acphys.cli.SUMMARY_ROWS", 3)
     code, out, err = invoke(["run", "--until", "0.1"], capsys)  # the default's 7 bodies
     assert (code, err) == (0, "")
     assert "7 bodies" in out and "the first 3 bodies; --trace records them all" in out

@@ -80,13 +80,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seconds", type=float, default=3.0)
     parser.add_argument("--instructions", action="store_true", help="count instructions (callgrind)")
     parser.add_argument("--engine", choices=("reference", "fast"), default="reference")
+    parser.add_argument("--workload", action="append", help="only this workload (repeatable)")
     args = parser.parse_args(argv)
     sides = {"baseline": args.baseline.resolve() / "src", "this": HERE / "src"}
     if args.instructions:
         from acphys.bench import WORKLOADS
 
         print(f"{'workload':10} {'baseline instr/step':>20} {'this instr/step':>16} {'this/baseline':>14}")
-        for name in WORKLOADS:
+        for name in args.workload or WORKLOADS:
             before, after = (instructions(src, name, args.bodies, args.seconds) for src in sides.values())
             print(f"{name:10} {before:20,.0f} {after:16,.0f} {after / before:14.3f}")
         return 0

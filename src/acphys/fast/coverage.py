@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from acphys.fast.layout import MAX_CELLS, MAX_SPHERES
+from acphys.fast.layout import MAX_CELLS, MAX_RECORDS, MAX_SPHERES
 from acphys.flags import PhysicsState, TransientState
 from acphys.physics_obj import PhysicsObj
 
@@ -60,7 +60,7 @@ def uncovered_reason(
         return "hooks waiting"
     if body.weenie_obj is not None or body.on_collision is not None:
         return "a weenie or a collision callback"
-    if body.collision_table is not None and body.collision_table.ids():
+    if body.collision_table is not None and len(body.collision_table) > MAX_RECORDS:
         return "collision records"
     if body.observer is not None and body.observer != observer:
         return "an observer"

@@ -23,6 +23,8 @@ MAX_SPHERES = 2
 MAX_CELLS = 8
 #: The most nodes of a sequence the kernel plays (links then cycles); more falls back.
 MAX_NODES = 4
+#: The most collision records (``collision_table``) a covered body holds.
+MAX_RECORDS = 4
 
 BODY = np.dtype(
     [
@@ -58,6 +60,10 @@ BODY = np.dtype(
         ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
         ("colliding_with_environment", "u1"),
+        # collision_table: when each record was last touched, and whether it was ethereal
+        ("num_records", "i1"),
+        ("record_time", "f8", MAX_RECORDS),
+        ("record_ethereal", "u1", MAX_RECORDS),
         ("has_movement_manager", "u1"),
         # -- the setup (CPartArray) ----------------------------------------------------------
         ("num_sphere", "i1"),

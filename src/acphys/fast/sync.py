@@ -57,6 +57,13 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["step_events"] = bool(body.step_events)
     record["colliding_with_environment"] = body.colliding_with_environment
     record["has_movement_manager"] = body.movement_manager is not None
+    table = body.collision_table
+    ids = table.ids()[: record["record_time"].size] if table is not None else []
+    record["num_records"] = len(ids)
+    for r, object_id in enumerate(ids):
+        kept = table.get(object_id)
+        record["record_time"][r] = kept.touched_time
+        record["record_ethereal"][r] = kept.ethereal
     record["has_parent"] = body.parent is not None
     parts = body.part_array
     spheres = parts.setup.spheres if parts is not None else []

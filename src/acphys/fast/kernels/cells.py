@@ -36,9 +36,10 @@ BAIL_REASONS = (
     "landing or leaving the ground with a movement manager",
     "a full journal or log",
     "an animation hook",
+    "a collision record ending",
 )
 R_STATIC, R_REACH, R_SHAPE, R_ETHEREAL, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7
-R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK = 8, 9, 10, 11, 12
+R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK, R_RECORDS = 8, 9, 10, 11, 12, 13
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -29,7 +29,7 @@ from acphys.constants import (
     MIN_QUANTUM,
     SMALL_VELOCITY,
 )
-from acphys.fast.kernels.cells import BAIL, R_FULL, R_HOOK, R_MOTION, R_NO_CELL, bail
+from acphys.fast.kernels.cells import BAIL, R_FULL, R_HOOK, R_MOTION, R_NO_CELL, R_RECORDS, bail
 from acphys.fast.kernels.frame import (
     f32,
     frame_combine,
@@ -470,11 +470,26 @@ def transition(w, tr, i, origin, q, m):
 
 
 @njit(cache=True, _nrt=False)
+def records_expire(b, now):
+    """Whether ``report_collision_end`` would end a record now (untouched for over a second, or an
+    ethereal one for any time): it reports the end to both bodies, which is the reference path's.
+
+    Part of :meth:`acphys.body.reports.CollisionReports.report_collision_end`.
+    Retail: CPhysicsObj::report_collision_end @ 0x00514620 (acclient.c:321712)
+    """
+    for r in range(b.num_records):
+        age = now - b.record_time[r]
+        if age > 1.0 or (b.record_ethereal[r] and age > 0.0):
+            return True
+    return False
+
+
+@njit(cache=True, _nrt=False)
 def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     """Report touching the environment, bounce or stop, and keep the stationary bits.
 
-    Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` (a covered body collides
-    with no object and keeps no collision records) and of
+    Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` (a step of the kernel
+    collides with no object, and ends no record: :func:`records_expire`) and of
     :meth:`acphys.body.reports.CollisionReports.report_environment_collision`.
     Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
     CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
@@ -517,9 +532,11 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
 
 
 @njit(cache=True, _nrt=False)
-def set_position_internal(w, tr, i, moves, counters, journal, events):
+def set_position_internal(w, tr, i, now, moves, counters, journal, events):
     """Commit the sweep: cell, frame, contact, walkable, water, sliding, collisions, shadows.
     Returns ``(status, events)``: 0, BAIL, or ``GROW`` with the full cell in the counters.
+
+    ``now`` is the physics time (the collision records' clock).
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.set_position_internal`.
     Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
@@ -572,6 +589,8 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
         b.transient |= TS_SLIDING
     else:
         b.transient &= ~TS_SLIDING
+    if records_expire(b, now):
+        return bail(tr, R_RECORDS), events
     events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
     if tr.num_cells:
         if not remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
@@ -586,7 +605,7 @@ def set_position_internal(w, tr, i, moves, counters, journal, events):
 
 
 @njit(cache=True, _nrt=False)
-def update_object_internal(w, tr, i, quantum, moves, counters, journal, owed):
+def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owed):
     """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
 
     AnimDone hooks the candidate's quantum queued are owed: logged in ``owed`` (body, count) for
@@ -614,11 +633,11 @@ def update_object_internal(w, tr, i, quantum, moves, counters, journal, owed):
         owed[n, 0] = i
         owed[n, 1] = b.seq_anim_done
         counters[OWED] = n + 1
-    return move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal)
+    return move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal)
 
 
 @njit(cache=True, _nrt=False)
-def move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal):
+def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal):
     """The second half of an active step: sweep to the candidate and commit (or keep the origin).
     Returns ``(status, events)``.
 
@@ -648,7 +667,7 @@ def move_to_candidate(w, tr, i, quantum, origin, q, m, moves, counters, journal)
     b.cached_velocity[0] = f32(inv * offset[0])
     b.cached_velocity[1] = f32(inv32 * offset[1])
     b.cached_velocity[2] = f32(inv32 * offset[2])
-    return set_position_internal(w, tr, i, moves, counters, journal, events)
+    return set_position_internal(w, tr, i, now, moves, counters, journal, events)
 
 
 # -- the clock ----------------------------------------------------------------------------------
@@ -684,7 +703,7 @@ def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journa
     """
     clock[1] += quantum
     step = f32(quantum)
-    status, events = update_object_internal(w, tr, i, step, moves, counters, journal, owed)
+    status, events = update_object_internal(w, tr, i, step, clock[1], moves, counters, journal, owed)
     if status != 0:
         return status
     counters[STEPS] += 1

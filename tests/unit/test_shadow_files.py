@@ -136,3 +136,31 @@ def test_a_seeded_crowd_at_a_cell_corner_is_the_same_with_and_without_files(
     moved = {name for name, *_ in filed}
     assert len(moved) == 48  # every human and ball stepped
     _assert_same(filed, plain)
+
+
+def _filing(cell: obj_cell.ObjCell) -> tuple[dict[tuple[int, int], set[int]], set[int]]:
+    """A cell's files as shadow slots: by square, and unfiled."""
+    assert cell.shadow_tiles is not None
+    squares = {tile: {shadow.index for shadow in square} for tile, square in cell.shadow_tiles.items()}
+    return squares, {shadow.index for shadow in cell._unfiled}
+
+
+def test_the_fast_engine_hands_back_files_a_fresh_filing_would_make() -> None:
+    """``ObjCell.replace_shadow_objects`` keeps the files (refiling only what changed): after every
+    tick of a crowd on the fast engine, each filed cell's files are those ``_start_files`` makes
+    from its list, and every shadow points at its cell and slot."""
+    _description, crowd = WORKLOADS["crowd"]
+    sim = crowd(100, 1.0, engine="fast")
+    compared = 0
+    while sim.world.cur_time < 1.0:
+        sim.step()
+        for cell in {body.cell for body in sim.bodies if body.cell is not None}:
+            for index, shadow in enumerate(cell.shadow_objects):
+                assert shadow.cell is cell and shadow.index == index
+            if cell.shadow_tiles is None:
+                continue
+            kept = _filing(cell)
+            cell._start_files()
+            assert kept == _filing(cell), f"{cell} at {sim.world.cur_time}"
+            compared += 1
+    assert compared > 20

@@ -37,7 +37,7 @@ from acphys.math.cell_id import format_cell_id
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
-from acphys.world.obj_cell import SHADOW_INDEX_MIN, ShadowObj
+from acphys.world.obj_cell import ShadowObj
 from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
@@ -267,6 +267,7 @@ class FastPhysics(Physics):
         touched = {int(k) for k in record["shadow_cell"][: record["num_shadow"]] if k >= 0}
         touched |= {arrays.cell_index(s.cell_id) for s in body.shadow_objects if s.cell is not None}
         touched.discard(-1)
+        before = {k: arrays.shadow_list(k).tolist() for k in touched}
         for k in touched:
             arrays.set_shadow_list(k, shadow_entries(arrays, k, arrays.land_cells[k], self._index))
         if body.detection_manager is not None:  # its detection may have watched or left cells
@@ -278,9 +279,10 @@ class FastPhysics(Physics):
             reach = float(self._records[j]["reach"])
             self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
             grid.grid_place(self._records, self._grid_heads, j)
-        for k in touched:
+        for k in touched:  # the bodies whose slots the step's removals and additions moved
+            was = before[k]
             for slot, j in enumerate(arrays.shadow_list(k).tolist()):
-                if j >= 0 and j not in others:
+                if j >= 0 and j not in others and (slot >= len(was) or was[slot] != j):
                     other = self._records[j]
                     cells = other["shadow_cell"][: other["num_shadow"]].tolist()
                     if k in cells:
@@ -299,9 +301,11 @@ class FastPhysics(Physics):
         arrays = self._arrays
         transition_to_pool(self._transition, arrays, self.world)
         self._replay_moves()
+        moved = set()
         for i in stale.tolist():
             record = self._records[i]
             body = self._bodies[i]
+            moved.add(id(body))
             store_body(record, body)
             if body.part_array is not None:
                 self._animations.store(record, body.part_array.sequence)
@@ -317,7 +321,7 @@ class FastPhysics(Physics):
             record["stale"] = False
         cells = arrays.cells
         for k in np.flatnonzero(cells["dirty"]).tolist():
-            self._write_cell(k)
+            self._write_cell(k, moved)
         cells["dirty"] = False
 
     def _replay_moves(self) -> None:
@@ -349,25 +353,24 @@ class FastPhysics(Physics):
         super().apply_events(events, body_named)
         self._reload = True
 
-    def _write_cell(self, k: int) -> None:
-        """Make the reference cell ``k``'s shadow list the kernel's."""
+    def _write_cell(self, k: int, moved: set[int]) -> None:
+        """Make the reference cell ``k``'s shadow list the kernel's (``moved``: the ``id`` of each
+        body written back, whose place in the cell's files may have changed)."""
         assert self._arrays is not None
         arrays = self._arrays
         cell = arrays.land_cells[k]
+        current = cell.shadow_objects
         shadows: list[ShadowObj] = []
-        for entry in arrays.shadow_list(k).tolist():
-            if entry >= 0:
-                body = self._bodies[entry]
-                shadow = next(s for s in body.shadow_objects if s.cell_id == cell.id)
+        for slot, entry in enumerate(arrays.shadow_list(k).tolist()):
+            if entry < 0:
+                shadows.append(arrays.other_shadows[(-1 - entry, k)])
+                continue
+            body = self._bodies[entry]
+            if slot < len(current) and current[slot].physobj is body and id(body) not in moved:
+                shadows.append(current[slot])  # the same shadow in the same slot
             else:
-                shadow = arrays.other_shadows[(-1 - entry, k)]
-            shadow.cell = cell
-            shadow.index = len(shadows)
-            shadows.append(shadow)
-        cell.shadow_objects = shadows
-        cell.shadow_tiles = None
-        if len(shadows) >= SHADOW_INDEX_MIN:
-            cell._start_files()
+                shadows.append(next(s for s in body.shadow_objects if s.cell_id == cell.id))
+        cell.replace_shadow_objects(shadows, moved)
 
     # -- traces ------------------------------------------------------------------------------
 

@@ -451,6 +451,34 @@ class ObjCell:
         self._unfile(shadow)
         self._file(shadow, box)
 
+    def replace_shadow_objects(self, shadows: list[ShadowObj], moved: set[int]) -> None:
+        """Make ``shadows`` the list (each pointed at this cell and its slot), keeping the files: a
+        shadow that stays keeps its square unless its body is in ``moved`` (by ``id``), a new one
+        is filed, a gone one unfiled, so the cost follows what changed, not the list's length.
+
+        Not retail: how the fast engine hands a cell's list back (:mod:`acphys.fast.engine`).
+        """
+        old = self.shadow_objects
+        for index, shadow in enumerate(shadows):
+            shadow.cell = self
+            shadow.index = index
+        self.shadow_objects = shadows
+        if self.shadow_tiles is None or len(shadows) < SHADOW_INDEX_DROP:
+            self.shadow_tiles = None
+            if len(shadows) >= SHADOW_INDEX_MIN:
+                self._start_files()
+            return
+        staying = set(shadows)
+        for shadow in old:
+            if shadow not in staying:
+                self._unfile(shadow)
+        known = set(old)
+        for shadow in shadows:
+            if shadow not in known:
+                self._file(shadow, shadow.physobj.collision_box())
+            elif id(shadow.physobj) in moved:
+                self.refile_shadow(shadow, shadow.physobj.collision_box())
+
     def _start_files(self) -> None:
         self.shadow_tiles = {}
         self._unfiled = set()

@@ -26,6 +26,8 @@ class Comparison:
     reference_steps: int
     #: Where the traces first differ (empty when identical).
     divergence: str = ""
+    #: The kernel's body-steps whose sweep met another body.
+    touching: int = 0
 
 
 def _first_line_difference(a: Path, b: Path) -> str:
@@ -54,7 +56,7 @@ def compare_engines(
     a, b = traces["reference"], traces["fast"]
     records = sum(1 for _ in a.open("rb"))
     if a.read_bytes() == b.read_bytes():
-        return Comparison(True, records, counts.kernel, counts.reference)
+        return Comparison(True, records, counts.kernel, counts.reference, touching=counts.touching)
     divergence = diff_traces(a, b, tol=0.0)
     text = divergence.describe() if divergence is not None else _first_line_difference(a, b)
-    return Comparison(False, records, counts.kernel, counts.reference, text)
+    return Comparison(False, records, counts.kernel, counts.reference, text, counts.touching)

@@ -53,6 +53,9 @@ class Counts:
 
     kernel: int = 0
     reference: int = 0
+    #: Of the kernel's body-steps, those whose sweep met another body (held by it, slid off it, or
+    #: stepped down onto it).
+    touching: int = 0
     reasons: dict[str, int] = field(default_factory=dict)
 
     @property
@@ -193,7 +196,8 @@ class FastPhysics(Physics):
                 self._saved_transition,
             )
             self.counts.kernel += int(self._counters[kernels.STEPS])
-            self._counters[kernels.STEPS] = 0
+            self.counts.touching += int(self._counters[kernels.TOUCHING])
+            self._counters[kernels.STEPS] = self._counters[kernels.TOUCHING] = 0
             self._write_log()
             self._run_owed_hooks()
             start = stop

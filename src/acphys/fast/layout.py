@@ -25,6 +25,8 @@ MAX_CELLS = 8
 MAX_NODES = 4
 #: The most collision records (``collision_table``) a covered body holds.
 MAX_RECORDS = 4
+#: The most bodies one sweep touches (``COLLISIONINFO::collide_object``); more falls back.
+MAX_COLLIDE = 4
 
 BODY = np.dtype(
     [
@@ -60,8 +62,9 @@ BODY = np.dtype(
         ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
         ("colliding_with_environment", "u1"),
-        # collision_table: when each record was last touched, and whether it was ethereal
+        # collision_table: whom each record is of, when it was last touched, whether it was ethereal
         ("num_records", "i1"),
+        ("record_obj", "u4", MAX_RECORDS),
         ("record_time", "f8", MAX_RECORDS),
         ("record_ethereal", "u1", MAX_RECORDS),
         ("has_movement_manager", "u1"),
@@ -187,6 +190,8 @@ TRANSITION = np.dtype(
         ("collision_normal", "f8", 3),
         ("collided_with_environment", "u1"),
         ("frames_stationary_fall", "i4"),
+        ("num_collide", "i4"),
+        ("collide_body", "i4", MAX_COLLIDE),  # the bodies touched, by index
         # CELLARRAY
         ("num_cells", "i4"),
         ("added_outside", "u1"),

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from acphys.body.reports import REACH_MARGIN
+from acphys.body.reports import REACH_MARGIN, CollisionRecord
 from acphys.flags import PhysicsState, TransientState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
@@ -62,6 +62,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["num_records"] = len(ids)
     for r, object_id in enumerate(ids):
         kept = table.get(object_id)
+        record["record_obj"][r] = object_id
         record["record_time"][r] = kept.touched_time
         record["record_ethereal"][r] = kept.ethereal
     record["has_parent"] = body.parent is not None
@@ -111,5 +112,8 @@ def store_body(record: np.void, body: PhysicsObj) -> None:
     if not record["step_events"]:
         body.step_events.clear()  # the kernel's step recorded them
     body.colliding_with_environment = bool(record["colliding_with_environment"])
+    for r in range(int(record["num_records"])):  # touched again: clobbered in place, order kept
+        touched = CollisionRecord(float(record["record_time"][r]), bool(record["record_ethereal"][r]))
+        body.collision_table.clobber(int(record["record_obj"][r]), touched)
     if body.part_array is not None:
         body.part_array.update_parts(frame)

@@ -25,21 +25,22 @@ BAIL = -1
 BAIL_REASONS = (
     "none",
     "a static object's shadow",
-    "a body within reach",
+    "stepping up onto a body, landing on one, or a perfect clip",
     "a body the kernel cannot collide with",
-    "an ethereal obstruction",
+    "a body touched for the first time (the report goes to both)",
     "a cell the kernel does not know (indoors, unloaded, a building or watchers)",
     "leaving the known cells",
     "the water depth of a partly wet cell",
     "a walkable polygon, a collision or a back-face hit",
     "nesting deeper than the compiled levels",
     "landing or leaving the ground with a movement manager",
-    "a full journal or log",
+    "a full journal, log or list",
     "an animation hook",
     "a collision record ending",
+    "a step down past a sphere (a root of a negative number)",
 )
-R_STATIC, R_REACH, R_SHAPE, R_ETHEREAL, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7
-R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK, R_RECORDS = 8, 9, 10, 11, 12, 13
+R_STATIC, R_CLIMB, R_SHAPE, R_CONTACT, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7
+R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK, R_RECORDS, R_ROOT = 8, 9, 10, 11, 12, 13, 14
 
 
 @njit(cache=True, inline="always", _nrt=False)

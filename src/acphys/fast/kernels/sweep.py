@@ -1,12 +1,12 @@
 """The kernel's ``CTransition``: a body's sweep over outdoor terrain, among other bodies.
 
-Ports of :mod:`acphys.transition.transition`, :mod:`acphys.transition.sphere_path`,
-:mod:`acphys.transition.object_info` and :mod:`acphys.transition.collision_info` for what an
+Ports of :mod:`acphys.transition.transition` and :mod:`acphys.transition.object_info` for what an
 outdoor sweep meets: the terrain triangles of land cells (``validate_walkable``) and other
-bodies' shadows that stay out of reach. Everything else (a body within reach, a static object,
-a building, water depth of a partly wet cell, a cell the kernel does not know, nesting deeper than
-``LEVELS``) hands the step back to the reference path: every routine returns ``BAIL`` (-1) up the
-chain, and the tick restores the body as it was.
+bodies' spheres (:mod:`acphys.fast.kernels.contact`); the sphere path and collision record it
+moves and fills are :mod:`acphys.fast.kernels.path`. Everything else (a static object, a
+building, water depth of a partly wet cell, a cell the kernel does not know, a climb onto another
+body, nesting deeper than the compiled levels) hands the step back to the reference path: every
+routine returns ``BAIL`` (-1) up the chain, and the tick restores the body as it was.
 
 The transition record ``tr`` (:data:`~acphys.fast.layout.TRANSITION`) is retail's pooled
 transition; ``w`` bundles the world: ``(bodies, cells, landblock_index, shadow_pool, grid heads,
@@ -32,10 +32,7 @@ from acphys.fast.kernels.cells import (
     BAIL,
     R_CELL,
     R_DEEP,
-    R_ETHEREAL,
     R_NO_CELL,
-    R_REACH,
-    R_SHAPE,
     R_SHAPES,
     R_STATIC,
     R_WATER,
@@ -46,6 +43,7 @@ from acphys.fast.kernels.cells import (
     find_terrain_poly,
     point_in_cell,
 )
+from acphys.fast.kernels.contact import body_find_obj_collisions, out_of_reach
 from acphys.fast.kernels.frame import (
     f32,
     frame_interpolate_rotation,
@@ -57,6 +55,24 @@ from acphys.fast.kernels.frame import (
     v_normalize_check_small,
 )
 from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of
+from acphys.fast.kernels.path import (
+    IT_INITIAL_PLACEMENT,
+    IT_PLACEMENT,
+    IT_TRANSITION,
+    add_offset_to_check_pos,
+    adjust_check_pos,
+    cache_global_curr_center,
+    collision_info_init,
+    restore_check_pos,
+    save_check_pos,
+    set_check_pos_to_curr,
+    set_collision_normal,
+    set_contact_plane,
+    set_sliding_normal,
+    t3,
+    t4,
+    t9,
+)
 from acphys.fast.kernels.store import put
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT
@@ -80,217 +96,11 @@ PS_ETHEREAL = int(PhysicsState.ETHEREAL)
 PS_STATIC = int(PhysicsState.STATIC)
 PS_IGNORE_COLLISIONS = int(PhysicsState.IGNORE_COLLISIONS)
 
-IT_TRANSITION = 0
-IT_PLACEMENT = 1
-IT_INITIAL_PLACEMENT = 2
-
 WT_NOT_WATER = int(WaterType.NOT_WATER)
 WT_PARTIALLY_WATER = int(WaterType.PARTIALLY_WATER)
 WT_ENTIRELY_WATER = int(WaterType.ENTIRELY_WATER)
 ENTIRELY_WATER_DEPTH = 0.9
 
-#: ``find_obj_collisions``' reach shortcut (``acphys.body.reports.REACH_MARGIN``).
-REACH_MARGIN = 1e-3
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def t3(a):
-    """A record's 3-array as the tuple the frame kernels take."""
-    return (a[0], a[1], a[2])
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def t4(a):
-    return (a[0], a[1], a[2], a[3])
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def t9(a):
-    return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8])
-
-
-# -- SPHEREPATH -----------------------------------------------------------------------------
-
-
-@njit(cache=True, _nrt=False)
-def cache_global_curr_center(tr):
-    """Place each local sphere centre in ``curr_pos``'s frame.
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_curr_center`.
-    Retail: SPHEREPATH::cache_global_curr_center @ 0x0050C740 (acclient.c:313696)
-    """
-    m, o = tr.curr_m, tr.curr_origin
-    for s in range(tr.num_sphere):
-        cx, cy, cz = tr.local_sphere[s, 0], tr.local_sphere[s, 1], tr.local_sphere[s, 2]
-        tr.global_curr_center[s, 0] = f32(cx * m[0] + cy * m[3] + cz * m[6] + o[0])
-        tr.global_curr_center[s, 1] = f32(m[7] * cz + cx * m[1] + m[4] * cy + o[1])
-        tr.global_curr_center[s, 2] = f32(m[8] * cz + m[5] * cy + m[2] * cx + o[2])
-
-
-@njit(cache=True, _nrt=False)
-def cache_global_sphere_at_check(tr):
-    """Rebuild the global spheres and low point at ``check_pos``.
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_sphere` (``offset`` None).
-    Retail: SPHEREPATH::cache_global_sphere @ 0x0050C810 (acclient.c:313747)
-    """
-    m, o = tr.check_m, tr.check_origin
-    for s in range(tr.num_sphere):
-        cx, cy, cz = tr.local_sphere[s, 0], tr.local_sphere[s, 1], tr.local_sphere[s, 2]
-        tr.global_sphere[s, 0] = f32(cx * m[0] + cy * m[3] + cz * m[6] + o[0])
-        tr.global_sphere[s, 1] = f32(m[7] * cz + cx * m[1] + m[4] * cy + o[1])
-        tr.global_sphere[s, 2] = f32(m[8] * cz + m[2] * cx + m[5] * cy + o[2])
-        tr.global_sphere[s, 3] = tr.local_sphere[s, 3]
-    px, py, pz = tr.local_low_point[0], tr.local_low_point[1], tr.local_low_point[2]
-    tr.global_low_point[0] = f32(m[6] * pz + m[0] * px + m[3] * py + o[0])
-    tr.global_low_point[1] = f32(m[7] * pz + m[1] * px + m[4] * py + o[1])
-    tr.global_low_point[2] = f32(m[8] * pz + m[2] * px + m[5] * py + o[2])
-
-
-@njit(cache=True, _nrt=False)
-def cache_global_sphere_offset(tr, dx, dy, dz):
-    """Move the global spheres and low point by an offset (float32 stores: Vector3 sums).
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.cache_global_sphere` (with an offset).
-    Retail: SPHEREPATH::cache_global_sphere @ 0x0050C810 (acclient.c:313747)
-    """
-    for s in range(tr.num_sphere):
-        tr.global_sphere[s, 0] = f32(tr.global_sphere[s, 0] + dx)
-        tr.global_sphere[s, 1] = f32(tr.global_sphere[s, 1] + dy)
-        tr.global_sphere[s, 2] = f32(tr.global_sphere[s, 2] + dz)
-    tr.global_low_point[0] = f32(tr.global_low_point[0] + dx)
-    tr.global_low_point[1] = f32(tr.global_low_point[1] + dy)
-    tr.global_low_point[2] = f32(tr.global_low_point[2] + dz)
-
-
-@njit(cache=True, _nrt=False)
-def add_offset_to_check_pos(tr, dx, dy, dz):
-    """Move ``check_pos`` and the global spheres; the cell array goes stale.
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.add_offset_to_check_pos`.
-    Retail: SPHEREPATH::add_offset_to_check_pos @ 0x00509D10 (acclient.c:311556)
-    """
-    tr.cell_array_valid = False
-    tr.check_origin[0] = f32(tr.check_origin[0] + dx)
-    tr.check_origin[1] = f32(tr.check_origin[1] + dy)
-    tr.check_origin[2] = f32(tr.check_origin[2] + dz)
-    cache_global_sphere_offset(tr, dx, dy, dz)
-
-
-@njit(cache=True, _nrt=False)
-def set_check_pos_to_curr(tr):
-    """``set_check_pos(curr_pos, curr_cell)``: the candidate restarts where the sweep is.
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.set_check_pos`.
-    Retail: SPHEREPATH::set_check_pos @ 0x0050A8B0 (acclient.c:312090)
-    """
-    tr.check_cell_id = tr.curr_cell_id
-    put(tr.check_origin, tr.curr_origin)
-    put(tr.check_q, tr.curr_q)
-    put(tr.check_m, tr.curr_m)
-    tr.check_cell = tr.curr_cell
-    tr.cell_array_valid = False
-    cache_global_sphere_at_check(tr)
-
-
-@njit(cache=True, _nrt=False)
-def save_check_pos(tr):
-    """Port of :meth:`acphys.transition.sphere_path.SpherePath.save_check_pos`.
-    Retail: SPHEREPATH::save_check_pos @ 0x0050A880 (acclient.c:312082)
-    """
-    tr.backup_cell = tr.check_cell
-    tr.backup_cell_id = tr.check_cell_id
-    put(tr.backup_origin, tr.check_origin)
-    put(tr.backup_q, tr.check_q)
-    put(tr.backup_m, tr.check_m)
-
-
-@njit(cache=True, _nrt=False)
-def restore_check_pos(tr):
-    """Port of :meth:`acphys.transition.sphere_path.SpherePath.restore_check_pos`.
-    Retail: SPHEREPATH::restore_check_pos @ 0x0050B100 (acclient.c:312527)
-    """
-    tr.check_cell_id = tr.backup_cell_id
-    put(tr.check_origin, tr.backup_origin)
-    put(tr.check_q, tr.backup_q)
-    put(tr.check_m, tr.backup_m)
-    tr.check_cell = tr.backup_cell
-    tr.cell_array_valid = False
-    cache_global_sphere_at_check(tr)
-
-
-@njit(cache=True, _nrt=False)
-def adjust_check_pos(tr, cell_id):
-    """Re-home ``check_pos`` into outdoor cell ``cell_id`` (shifting by the block offset).
-
-    Port of :meth:`acphys.transition.sphere_path.SpherePath.adjust_check_pos`.
-    Retail: SPHEREPATH::adjust_check_pos @ 0x0050CC00 (acclient.c:313961)
-    """
-    if (cell_id & 0xFFFF) < 0x100:
-        dx, dy, dz = get_block_offset(cell_id, tr.check_cell_id)
-        cache_global_sphere_offset(tr, dx, dy, dz)
-        tr.check_origin[0] = f32(tr.check_origin[0] + dx)
-        tr.check_origin[1] = f32(tr.check_origin[1] + dy)
-        tr.check_origin[2] = f32(tr.check_origin[2] + dz)
-    tr.check_cell_id = cell_id
-
-
-# -- COLLISIONINFO --------------------------------------------------------------------------
-
-
-@njit(cache=True, _nrt=False)
-def set_contact_plane(tr, nx, ny, nz, d, is_water):
-    """Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_contact_plane`.
-    Retail: COLLISIONINFO::set_contact_plane @ 0x00509D80 (acclient.c:311580)
-    """
-    tr.contact_plane_valid = True
-    tr.contact_n[0] = nx
-    tr.contact_n[1] = ny
-    tr.contact_n[2] = nz
-    tr.contact_d = d
-    tr.contact_plane_is_water = is_water
-
-
-@njit(cache=True, _nrt=False)
-def set_collision_normal(tr, nx, ny, nz):
-    """Store the normal normalised (zero when shorter than EPSILON; valid either way).
-
-    Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_collision_normal`.
-    Retail: COLLISIONINFO::set_collision_normal @ 0x0050A000 (acclient.c:311725)
-    """
-    tr.collision_normal_valid = True
-    small, n = v_normalize_check_small((f32(nx), f32(ny), f32(nz)))
-    if small:
-        n = (0.0, 0.0, 0.0)
-    tr.collision_normal[0], tr.collision_normal[1], tr.collision_normal[2] = n
-
-
-@njit(cache=True, _nrt=False)
-def set_sliding_normal(tr, nx, ny):
-    """Store the horizontal part of a normal, normalised (zero when too short).
-
-    Port of :meth:`acphys.transition.collision_info.CollisionInfo.set_sliding_normal`.
-    Retail: COLLISIONINFO::set_sliding_normal @ 0x0050A060 (acclient.c:311743)
-    """
-    tr.sliding_normal_valid = True
-    small, n = v_normalize_check_small((f32(nx), f32(ny), 0.0))
-    if small:
-        n = (0.0, 0.0, 0.0)
-    tr.sliding_normal[0], tr.sliding_normal[1], tr.sliding_normal[2] = n
-
-
-@njit(cache=True, _nrt=False)
-def collision_info_init(tr):
-    """Port of :meth:`acphys.transition.collision_info.CollisionInfo.init`.
-    Retail: COLLISIONINFO::init @ 0x00509D60 (acclient.c:311566)
-    """
-    tr.last_known_contact_plane_valid = False
-    tr.contact_plane_valid = False
-    tr.sliding_normal_valid = False
-    tr.collision_normal_valid = False
-    tr.collided_with_environment = False
-    tr.contact_plane_cell_id = 0
-    tr.frames_stationary_fall = 0
 
 
 # -- the transition's set-up ------------------------------------------------------------------
@@ -440,118 +250,6 @@ def find_env_collisions(w, tr, k):
 
 
 @njit(cache=True, _nrt=False)
-def out_of_reach(bodies, tr, j):
-    """Whether every moving sphere at ``check_pos`` misses every sphere of body ``j`` by more than
-    ``REACH_MARGIN`` (the reference's shortcut past ``intersects_sphere``).
-
-    Port of :meth:`acphys.body.reports.CollisionReports.out_of_reach`.
-    """
-    other = bodies[j]
-    m = other.m
-    ox, oy, oz = other.origin[0], other.origin[1], other.origin[2]
-    if (tr.check_cell_id >> 16) != (other.cell_id >> 16):
-        bx, by, bz = get_block_offset(tr.check_cell_id, other.cell_id)
-        ox, oy, oz = ox + bx, oy + by, oz + bz
-    scale = other.scale
-    for s in range(other.num_sphere):
-        cx, cy, cz = other.sphere[s, 0] * scale, other.sphere[s, 1] * scale, other.sphere[s, 2] * scale
-        x = m[6] * cz + m[0] * cx + m[3] * cy + ox
-        y = m[7] * cz + m[1] * cx + m[4] * cy + oy
-        z = m[8] * cz + m[2] * cx + m[5] * cy + oz
-        radius = other.sphere[s, 3] * scale + REACH_MARGIN
-        for t in range(tr.num_sphere):
-            dx = tr.global_sphere[t, 0] - x
-            dy = tr.global_sphere[t, 1] - y
-            dz = tr.global_sphere[t, 2] - z
-            limit = radius + tr.global_sphere[t, 3]
-            if not dx * dx + dy * dy + dz * dz > limit * limit:
-                return False
-    return True
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def collides_with_sphere(dx, dy, dz, radsum):
-    """Port of :meth:`acphys.geometry.sphere.Sphere.collides_with_sphere` (touching hits).
-    Retail: CSphere::collides_with_sphere @ 0x005369E0 (acclient.c:358508)
-    """
-    return dx * dx + dy * dy + dz * dz <= radsum * radsum
-
-
-@njit(cache=True, _nrt=False)
-def sphere_answers_ok(bodies, tr, j, s, is_creature):
-    """Whether ``CSphere::intersects_sphere`` of body ``j``'s sphere ``s`` (placed at its position
-    and scale, in ``check_pos``'s block) answers OK without touching anything; False when it would
-    collide, step or slide (the reference path then takes the step).
-
-    Port of the no-contact branches of :meth:`acphys.geometry.sphere.Sphere.intersects_sphere_placed`
-    and :meth:`~acphys.geometry.sphere.Sphere.intersects_sphere`.
-    Retail: CSphere::intersects_sphere @ 0x00537FD0 (acclient.c:359389), CSphere::intersects_sphere
-    @ 0x00537A80 (acclient.c:359156)
-    """
-    other = bodies[j]
-    scale = other.scale
-    vx = f32(other.sphere[s, 0] * scale)
-    vy = f32(other.sphere[s, 1] * scale)
-    vz = f32(other.sphere[s, 2] * scale)
-    m, o = other.m, other.origin
-    gx = f32(m[3] * vy + m[0] * vx + m[6] * vz + o[0])
-    gy = f32(m[4] * vy + m[1] * vx + m[7] * vz + o[1])
-    gz = f32(m[5] * vy + m[2] * vx + m[8] * vz + o[2])
-    bx, by, bz = get_block_offset(tr.check_cell_id, other.cell_id)
-    cx, cy, cz = f32(bx + gx), f32(by + gy), f32(bz + gz)
-    radius = f32(scale * other.sphere[s, 3])
-    dx = f32(tr.global_sphere[0, 0] - cx)
-    dy = f32(tr.global_sphere[0, 1] - cy)
-    dz = f32(tr.global_sphere[0, 2] - cz)
-    radsum = f32(radius + tr.global_sphere[0, 3] - EPSILON)
-    second = tr.num_sphere > 1
-    if second:
-        d2x = f32(tr.global_sphere[1, 0] - cx)
-        d2y = f32(tr.global_sphere[1, 1] - cy)
-        d2z = f32(tr.global_sphere[1, 2] - cz)
-        second = collides_with_sphere(d2x, d2y, d2z, radsum)
-    if tr.insert_type == IT_PLACEMENT:
-        return not (radsum * radsum >= dy * dy + dx * dx + dz * dz or second)
-    if tr.step_down:
-        if is_creature:
-            return True
-        hx, hy = f32(dx * dx), f32(dy * dy)
-        return radsum * radsum < dz * dz + hx + hy and not second
-    return not (collides_with_sphere(dx, dy, dz, radsum) or second)
-
-
-@njit(cache=True, _nrt=False)
-def body_find_obj_collisions(w, tr, j):
-    """Body ``j``'s answer to the sweep, when it is OK and changes nothing; else BAIL.
-
-    Port of :meth:`acphys.body.reports.CollisionReports.find_obj_collisions` for a body of spheres
-    with no weenie (others bail: ``collider`` is False).
-    Retail: CPhysicsObj::FindObjCollisions @ 0x0050F050 (acclient.c:316158)
-    """
-    bodies = w[0]
-    other = bodies[j]
-    state = other.state
-    if state & PS_ETHEREAL and state & PS_IGNORE_COLLISIONS:
-        return OK
-    if not other.collider:
-        return bail(tr, R_SHAPE)
-    mover_ethereal = bodies[tr.oi_body].state & PS_ETHEREAL
-    ethereal = state & PS_ETHEREAL or (mover_ethereal and not state & PS_STATIC)
-    if ethereal and tr.step_down:
-        return OK
-    if ethereal:  # an ethereal obstruction is reported through the collision objects
-        return bail(tr, R_ETHEREAL)
-    if state & PS_MISSILE:  # OBJECTINFO::missile_ignore: a missile obstacle is passed through
-        return OK
-    if not tr.step_down and out_of_reach(bodies, tr, j):
-        return OK
-    for s in range(other.num_sphere):
-        if not sphere_answers_ok(bodies, tr, j, s, False):
-            return bail(tr, R_REACH)
-    return OK
-
-
-@njit(cache=True, _nrt=False)
 def nobody_near(w, tr, x0, y0, x1, y1):
     """Whether no body but the mover reaches into the landblock-global box ``[x0, x1] × [y0, y1]``
     (its origin within its reach of the box)."""
@@ -588,13 +286,22 @@ def _asks(bodies, tr, j, k):
     return False
 
 
+@njit(cache=True, inline="always", _nrt=False)
+def _may_answer(bodies, tr, j):
+    """Whether body ``j`` could answer the sweep other than OK, or touch anything: within reach,
+    or of shapes the kernel does not know."""
+    return not bodies[j].collider or not out_of_reach(bodies, tr, j)
+
+
 @njit(cache=True, _nrt=False)
 def find_obj_collisions(w, tr, k):
-    """Ask the bodies shadowed in cell ``k`` to collide with the sweep; OK when every one would
-    answer OK without touching anything, else BAIL (as for any static object's shadow).
+    """Ask the bodies shadowed in cell ``k``, in the list's order, to collide with the sweep
+    (:func:`~acphys.fast.kernels.contact.body_find_obj_collisions`) until one answers other than
+    OK; a cell holding a static object's shadow bails.
 
-    The bodies within reach are found through the grid (:mod:`acphys.fast.kernels.grid`); a
-    sweep whose search would be too wide walks the cell's list, in order.
+    The bodies within reach are found through the grid (:mod:`acphys.fast.kernels.grid`): with
+    none, every answer is OK and touches nothing; with one, it is the only answer that counts;
+    with more, or a search too wide, the cell's list is walked in order, as retail walks it.
 
     Port of :meth:`acphys.world.obj_cell.ObjCell.find_obj_collisions`.
     Retail: CObjCell::find_obj_collisions @ 0x0052B750 (acclient.c:347141)
@@ -618,23 +325,27 @@ def find_obj_collisions(w, tr, k):
         low_y, high_y = min(low_y, y - r), max(high_y, y + r)
     tx0, tx1 = math.floor(low_x / TILE), math.floor(high_x / TILE)
     ty0, ty1 = math.floor(low_y / TILE), math.floor(high_y / TILE)
-    if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > MAX_TILES:
-        for i in range(cell.num_shadows):
-            entry = shadow_pool[cell.shadow_start + i]
-            if _asks(bodies, tr, entry, k):
-                result = body_find_obj_collisions(w, tr, entry)
-                if result != OK:
-                    return result
-        return OK
-    for tx in range(tx0, tx1 + 1):
-        for ty in range(ty0, ty1 + 1):
-            j = heads[bucket_of(tx, ty)]
-            while j >= 0:
-                if _asks(bodies, tr, j, k):
-                    result = body_find_obj_collisions(w, tr, j)
-                    if result != OK:
-                        return result
-                j = bodies[j].grid_next
+    if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) <= MAX_TILES:
+        count = 0
+        found = -1
+        for tx in range(tx0, tx1 + 1):
+            for ty in range(ty0, ty1 + 1):
+                j = heads[bucket_of(tx, ty)]
+                while j >= 0:
+                    if _asks(bodies, tr, j, k) and _may_answer(bodies, tr, j):
+                        count += 1
+                        found = j
+                    j = bodies[j].grid_next
+        if count == 0:
+            return OK
+        if count == 1:
+            return body_find_obj_collisions(bodies, tr, found)
+    for i in range(cell.num_shadows):  # in the list's order, as retail asks
+        entry = shadow_pool[cell.shadow_start + i]
+        if _asks(bodies, tr, entry, k):
+            result = body_find_obj_collisions(bodies, tr, entry)
+            if result != OK:
+                return result
     return OK
 
 

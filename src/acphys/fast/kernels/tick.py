@@ -29,7 +29,17 @@ from acphys.constants import (
     MIN_QUANTUM,
     SMALL_VELOCITY,
 )
-from acphys.fast.kernels.cells import BAIL, R_FULL, R_HOOK, R_MOTION, R_NO_CELL, R_RECORDS, bail
+from acphys.fast.kernels.cells import (
+    BAIL,
+    R_CONTACT,
+    R_FULL,
+    R_HOOK,
+    R_MOTION,
+    R_NO_CELL,
+    R_RECORDS,
+    R_STATIC,
+    bail,
+)
 from acphys.fast.kernels.frame import (
     f32,
     frame_combine,
@@ -41,22 +51,15 @@ from acphys.fast.kernels.frame import (
     v_normalized,
 )
 from acphys.fast.kernels.grid import block_origin, grid_place
+from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
-from acphys.fast.kernels.sweep import (
-    cache_global_curr_center,
-    find_transitional_position,
-    nobody_near,
-    set_sliding_normal,
-    t3,
-    t4,
-    t9,
-    transition_init,
-)
+from acphys.fast.kernels.sweep import find_transitional_position, nobody_near, transition_init
 from acphys.fast.layout import MAX_CELLS
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState
 
 PS_STATIC = int(PhysicsState.STATIC)
+PS_ETHEREAL = int(PhysicsState.ETHEREAL)
 PS_REPORT_COLLISIONS = int(PhysicsState.REPORT_COLLISIONS)
 PS_MISSILE = int(PhysicsState.MISSILE)
 PS_ALIGN_PATH = int(PhysicsState.ALIGN_PATH)
@@ -96,7 +99,8 @@ JOURNAL = 3  # rows in the undo journal
 GROW_CELL = 4
 REASON = 5  # why the last body handed its update back (acphys.fast.kernels.cells.BAIL_REASONS)
 OWED = 6  # rows in the owed-hooks log
-NUM_COUNTERS = 7
+TOUCHING = 7  # body-steps the kernel took whose sweep met another body
+NUM_COUNTERS = 8
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
@@ -485,11 +489,38 @@ def records_expire(b, now):
 
 
 @njit(cache=True, _nrt=False)
+def track_object_collisions(bodies, b, tr, now):
+    """Stamp each body the sweep touched into body ``b``'s collision records with the physics time
+    and its ETHEREAL bit; 0, or why the reference path must: a body touched for the first time is
+    reported to both bodies, a static one as the environment.
+
+    The tracking part of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions`, and
+    :meth:`acphys.body.reports.CollisionReports.track_object_collision` for a known record
+    (``clobber`` replaces it in place).
+    Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
+    CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216)
+    """
+    for c in range(tr.num_collide):
+        other = bodies[tr.collide_body[c]]
+        if other.state & PS_STATIC:
+            return R_STATIC
+        known = -1
+        for r in range(b.num_records):
+            if b.record_obj[r] == other.obj_id:
+                known = r
+        if known < 0:
+            return R_CONTACT
+        b.record_time[known] = now
+        b.record_ethereal[known] = bool(other.state & PS_ETHEREAL)
+    return 0
+
+
+@njit(cache=True, _nrt=False)
 def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     """Report touching the environment, bounce or stop, and keep the stationary bits.
 
-    Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` (a step of the kernel
-    collides with no object, and ends no record: :func:`records_expire`) and of
+    Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` after the tracking
+    (:func:`track_object_collisions`; a step of the kernel ends no record: :func:`records_expire`) and of
     :meth:`acphys.body.reports.CollisionReports.report_environment_collision`.
     Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
     CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
@@ -589,6 +620,9 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, events):
         b.transient |= TS_SLIDING
     else:
         b.transient &= ~TS_SLIDING
+    reason = track_object_collisions(bodies, b, tr, now)
+    if reason:
+        return bail(tr, reason), events
     if records_expire(b, now):
         return bail(tr, R_RECORDS), events
     events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
@@ -657,6 +691,8 @@ def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, jou
     found = transition(w, tr, i, origin, q, m)
     if found == BAIL:
         return BAIL, events
+    if tr.num_collide:
+        counters[TOUCHING] += 1
     if not found:
         set_frame(b, t3(b.origin), q, m)
         fill(b.cached_velocity, 0.0)
@@ -795,6 +831,7 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
         saved[0] = b
         saved_tr[0] = tr
         logged, moved, steps, indebted = counters[LOGGED], counters[MOVES], counters[STEPS], counters[OWED]
+        touching = counters[TOUCHING]
         physics_time = clock[1]
         counters[JOURNAL] = 0
         tr.bail = 0
@@ -806,6 +843,7 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
             tr_array[0] = saved_tr[0]
             counters[LOGGED], counters[MOVES] = logged, moved
             counters[STEPS], counters[OWED] = steps, indebted
+            counters[TOUCHING] = touching
             clock[1] = physics_time
             if status == GROW:
                 return GROW, i

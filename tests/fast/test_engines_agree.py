@@ -55,7 +55,7 @@ def test_bench_workloads_agree(workload: str, tmp_path: Path) -> None:
 def test_a_cell_that_fills_up_agrees(tmp_path: Path) -> None:
     """Forty balls thrown from a ring 40 m across into the landblock's middle cell: its shadow
     list outgrows the room it started with (the engine gives it more, the kernel goes on), and
-    the balls land among each other (a ball within another's reach is the reference path's)."""
+    the balls land among each other and touch (in the kernel: first touches, reports, slides)."""
     ring = [(math.cos(i * 0.157), math.sin(i * 0.157)) for i in range(40)]
     balls = "".join(
         f'[[body]]\nname = "b{i}"\nsetup = "ball"\nlandblock = "0xA9B4"\n'
@@ -70,7 +70,7 @@ def test_a_cell_that_fills_up_agrees(tmp_path: Path) -> None:
     )
     result = compare_engines(lambda engine: parse_scenario(text, "<fill>", engine=engine), tmp_path)
     assert result.identical, result.divergence
-    assert result.kernel_steps > result.reference_steps > 0
+    assert result.kernel_steps > 0 and result.touching > 0
 
 
 def test_full_logs_are_written_out_and_the_run_goes_on(

@@ -78,12 +78,15 @@ class FastPhysics(Physics):
         self._saved_body = np.zeros(1, dtype=BODY)
         self._saved_transition = np.zeros(1, dtype=TRANSITION)
         self._clock = np.zeros(4, dtype=np.float64)
-        self._log = np.zeros((LOG_ROWS, kernels.LOG_WIDTH), dtype=np.float64)
-        self._moves = np.zeros((LOG_ROWS, 3), dtype=np.int32)
+        # Room for at least one body's update in each log, or the kernel could never go on.
+        rows = max(LOG_ROWS, kernels.MAX_STEPS_PER_UPDATE * kernels.DEFERRED_PER_STEP)
+        self._log = np.zeros((rows, kernels.LOG_WIDTH), dtype=np.float64)
+        self._moves = np.zeros((rows, 3), dtype=np.int32)
         self._counters = np.zeros(kernels.NUM_COUNTERS, dtype=np.int64)
         self._journal = np.zeros((kernels.JOURNAL_ROWS, 3), dtype=np.int64)
-        #: AnimDone hooks the kernel's steps queued: (body, count), run after it returns.
-        self._owed = np.zeros((LOG_ROWS, 2), dtype=np.int32)
+        #: What the kernel's steps left for the engine (kernels.DEFERRED_*): AnimDone hooks owed,
+        #: collision reports to name.
+        self._owed = np.zeros((rows, kernels.DEFERRED_WIDTH), dtype=np.int32)
         self._index: dict[int, int] = {}
         #: Why each body is not covered ("" when it is): the first uncovered_reason.
         self._uncovered: list[str] = []
@@ -218,7 +221,9 @@ class FastPhysics(Physics):
         no animation to wait for. Both reach only the body's motion-table manager and motion
         interpreter (``MotionTableManager::AnimationDone`` → ``CMotionInterp::MotionDone``), which
         no step reads and the kernel never touches, so they run when the kernel returns."""
-        for i, count in self._owed[: int(self._counters[kernels.OWED])].tolist():
+        for kind, i, count, _, _ in self._owed[: int(self._counters[kernels.OWED])].tolist():
+            if kind != kernels.DEFERRED_ANIM_DONE:
+                continue
             body = self._bodies[i]
             body.anim_hooks.extend([ANIM_DONE_HOOK] * count)
             body.process_hooks()
@@ -384,13 +389,37 @@ class FastPhysics(Physics):
         self._reload = True
 
     def _write_log(self) -> None:
-        rows = int(self._counters[kernels.LOGGED])
-        if rows and self._writer is not None:
-            for row in self._log[:rows]:
-                self._writer.write_record(self._record_of(row))
+        """Write the kernel's trace rows, handing each collision report to its receiver in step
+        order: one of another body's step is appended to the receiver's ``step_events`` before
+        the receiver's next row (as the reference appends it at once); the mover's own goes into
+        its step's row."""
+        rows = int(self._counters[kernels.LOGGED]) if self._writer is not None else 0
+        deferred = self._owed[: int(self._counters[kernels.OWED])].tolist()
+        reports = [r for r in deferred if r[0] == kernels.DEFERRED_COLLISION]
+        next_report = 0
+        for n, row in enumerate(self._log[:rows]):
+            own = []
+            while next_report < len(reports) and reports[next_report][1] <= n:
+                _, _, receiver, other, is_own = reports[next_report]
+                if is_own:
+                    own.append(self._report_name(other))
+                else:
+                    self._bodies[receiver].step_events.append(self._report_name(other))
+                next_report += 1
+            self._writer.write_record(self._record_of(row, own))
+        for _, _, receiver, other, is_own in reports[next_report:]:
+            if not is_own:  # the mover's own report lived for its step only (no trace: no row)
+                self._bodies[receiver].step_events.append(self._report_name(other))
         self._counters[kernels.LOGGED] = 0
 
-    def _record_of(self, row: np.ndarray) -> dict[str, Any]:
+    def _report_name(self, j: int) -> str:
+        """``collision:NAME`` of a report of body ``j`` (its id in hex without a name)."""
+        other = self._bodies[j]
+        return "collision:" + (other.name if other.name else f"0x{other.id:08X}")
+
+    def _record_of(self, row: np.ndarray, reports: list[str]) -> dict[str, Any]:
+        """A trace record from a kernel log row; ``reports``: the collision reports the step made
+        to its own body (after a landing or leaving, before touching the environment)."""
         values = row.tolist()
         body = self._bodies[int(values[0])]
         transient = TransientState(int(values[20]))
@@ -403,6 +432,7 @@ class FastPhysics(Physics):
             events.append("hit_ground")
         if bits & kernels.EVENT_LEAVE_GROUND:
             events.append("leave_ground")
+        events.extend(reports)
         if bits & kernels.EVENT_COLLISION_ENVIRONMENT:
             events.append("collision:environment")
         return {

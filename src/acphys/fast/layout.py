@@ -61,6 +61,7 @@ BODY = np.dtype(
         ("has_parent", "u1"),
         ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
+        ("on_collision", "u1"),  # a user's collision callback: reports to it are the reference's
         ("colliding_with_environment", "u1"),
         # collision_table: whom each record is of, when it was last touched, whether it was ethereal
         ("num_records", "i1"),

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from acphys.body.reports import REACH_MARGIN, CollisionRecord
+from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
 from acphys.flags import PhysicsState, TransientState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
@@ -66,6 +66,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         record["record_time"][r] = kept.touched_time
         record["record_ethereal"][r] = kept.ethereal
     record["has_parent"] = body.parent is not None
+    record["on_collision"] = body.on_collision is not None
     parts = body.part_array
     spheres = parts.setup.spheres if parts is not None else []
     record["collider"] = (
@@ -112,7 +113,10 @@ def store_body(record: np.void, body: PhysicsObj) -> None:
     if not record["step_events"]:
         body.step_events.clear()  # the kernel's step recorded them
     body.colliding_with_environment = bool(record["colliding_with_environment"])
-    for r in range(int(record["num_records"])):  # touched again: clobbered in place, order kept
+    count = int(record["num_records"])
+    if count and body.collision_table is None:
+        body.collision_table = CollisionTable()
+    for r in range(count):  # known records clobbered in place, new ones appended: retail's order
         touched = CollisionRecord(float(record["record_time"][r]), bool(record["record_ethereal"][r]))
         body.collision_table.clobber(int(record["record_obj"][r]), touched)
     if body.part_array is not None:

@@ -55,11 +55,13 @@ from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_norma
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
 from acphys.fast.kernels.sweep import find_transitional_position, nobody_near, transition_init
-from acphys.fast.layout import MAX_CELLS
+from acphys.fast.layout import MAX_CELLS, MAX_COLLIDE, MAX_RECORDS
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState
 
 PS_STATIC = int(PhysicsState.STATIC)
 PS_ETHEREAL = int(PhysicsState.ETHEREAL)
+PS_IGNORE_COLLISIONS = int(PhysicsState.IGNORE_COLLISIONS)
+PS_REPORT_AS_ENVIRONMENT = int(PhysicsState.REPORT_COLLISIONS_AS_ENVIRONMENT)
 PS_REPORT_COLLISIONS = int(PhysicsState.REPORT_COLLISIONS)
 PS_MISSILE = int(PhysicsState.MISSILE)
 PS_ALIGN_PATH = int(PhysicsState.ALIGN_PATH)
@@ -98,7 +100,7 @@ MOVES = 2  # rows in the cell-move log
 JOURNAL = 3  # rows in the undo journal
 GROW_CELL = 4
 REASON = 5  # why the last body handed its update back (acphys.fast.kernels.cells.BAIL_REASONS)
-OWED = 6  # rows in the owed-hooks log
+OWED = 6  # rows in the deferred log (DEFERRED_*): what the engine does when the kernel returns
 TOUCHING = 7  # body-steps the kernel took whose sweep met another body
 NUM_COUNTERS = 8
 
@@ -113,6 +115,15 @@ EVENT_PENDING = 8
 #: The most steps one update takes: HUGE_QUANTUM / MAX_QUANTUM quanta (and a remainder).
 MAX_STEPS_PER_UPDATE = 11
 JOURNAL_ROWS = 4096
+#: Kinds of the deferred log's rows ``(kind, a, b, c, d)``: an AnimDone hook owed
+#: ``(body, count)``; a collision report ``(row, receiver, other, own)``: ``receiver`` hears of
+#: ``other`` (``collision:NAME``), in the trace row ``row`` when ``own`` (the mover's own step),
+#: else before the receiver's next step.
+DEFERRED_ANIM_DONE = 0
+DEFERRED_COLLISION = 1
+DEFERRED_WIDTH = 5
+#: The most deferred rows one quantum adds: its AnimDone row, two reports per body touched.
+DEFERRED_PER_STEP = 1 + 2 * MAX_COLLIDE
 
 # Journal row kinds: pool[a] was b; cells[a].num_shadows was b;
 # bodies[a // MAX_CELLS].shadow_slot[a % MAX_CELLS] was b.
@@ -489,29 +500,62 @@ def records_expire(b, now):
 
 
 @njit(cache=True, _nrt=False)
-def track_object_collisions(bodies, b, tr, now):
-    """Stamp each body the sweep touched into body ``b``'s collision records with the physics time
-    and its ETHEREAL bit; 0, or why the reference path must: a body touched for the first time is
-    reported to both bodies, a static one as the environment.
+def _report(owed, counters, row, receiver, other, own):
+    n = counters[OWED]
+    owed[n, 0] = DEFERRED_COLLISION
+    owed[n, 1] = row
+    owed[n, 2] = receiver
+    owed[n, 3] = other
+    owed[n, 4] = own
+    counters[OWED] = n + 1
 
-    The tracking part of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions`, and
-    :meth:`acphys.body.reports.CollisionReports.track_object_collision` for a known record
-    (``clobber`` replaces it in place).
+
+@njit(cache=True, _nrt=False)
+def track_object_collisions(bodies, i, tr, now, owed, counters):
+    """Stamp each body the sweep touched into body ``i``'s collision records with the physics time
+    and its ETHEREAL bit; a body touched for the first time gets a record, and the two bodies
+    hear of each other (``collision:NAME``, deferred: :data:`DEFERRED_COLLISION`). Returns 0, or
+    why the reference path must: a static body (the environment), a missile's attack report, a
+    receiver that reports as the environment or calls back, a full table.
+
+    The tracking part of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions`,
+    :meth:`acphys.body.reports.CollisionReports.track_object_collision` (``clobber`` replaces a
+    known record in place and appends a new one) and, for a first touch,
+    :meth:`~acphys.body.reports.CollisionReports.report_object_collision`.
     Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
-    CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216)
+    CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216),
+    CPhysicsObj::report_object_collision @ 0x00513060 (acclient.c:320227)
     """
+    b = bodies[i]
     for c in range(tr.num_collide):
-        other = bodies[tr.collide_body[c]]
+        j = tr.collide_body[c]
+        other = bodies[j]
         if other.state & PS_STATIC:
             return R_STATIC
         known = -1
         for r in range(b.num_records):
             if b.record_obj[r] == other.obj_id:
                 known = r
-        if known < 0:
+        if known >= 0:
+            b.record_time[known] = now
+            b.record_ethereal[known] = bool(other.state & PS_ETHEREAL)
+            continue
+        if b.num_records >= MAX_RECORDS:
+            return R_FULL
+        if b.state & PS_MISSILE or other.on_collision:  # an attack report; a user's callback
             return R_CONTACT
-        b.record_time[known] = now
-        b.record_ethereal[known] = bool(other.state & PS_ETHEREAL)
+        if other.state & (PS_MISSILE | PS_REPORT_AS_ENVIRONMENT):
+            return R_CONTACT
+        r = b.num_records
+        b.record_obj[r] = other.obj_id
+        b.record_time[r] = now
+        b.record_ethereal[r] = bool(other.state & PS_ETHEREAL)
+        b.num_records = r + 1
+        row = counters[LOGGED]
+        if not other.state & PS_IGNORE_COLLISIONS and b.state & PS_REPORT_COLLISIONS:
+            _report(owed, counters, row, i, j, 1)
+        if other.state & PS_REPORT_COLLISIONS and not b.state & PS_IGNORE_COLLISIONS:
+            _report(owed, counters, row, j, i, 0)
     return 0
 
 
@@ -563,7 +607,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
 
 
 @njit(cache=True, _nrt=False)
-def set_position_internal(w, tr, i, now, moves, counters, journal, events):
+def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events):
     """Commit the sweep: cell, frame, contact, walkable, water, sliding, collisions, shadows.
     Returns ``(status, events)``: 0, BAIL, or ``GROW`` with the full cell in the counters.
 
@@ -620,7 +664,8 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, events):
         b.transient |= TS_SLIDING
     else:
         b.transient &= ~TS_SLIDING
-    reason = track_object_collisions(bodies, b, tr, now)
+    first_report = counters[OWED]
+    reason = track_object_collisions(bodies, i, tr, now, owed, counters)
     if reason:
         return bail(tr, reason), events
     if records_expire(b, now):
@@ -635,6 +680,9 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, events):
         if full >= 0:
             counters[GROW_CELL] = full
             return GROW, events
+    for n in range(first_report, counters[OWED]):  # the step stands: the receivers hold events
+        if owed[n, 0] == DEFERRED_COLLISION and not owed[n, 4]:
+            bodies[owed[n, 2]].step_events = True
     return 0, events
 
 
@@ -662,16 +710,15 @@ def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owe
         return bail(tr, R_HOOK), 0
     if status == STATUS_ANIM_DONE:
         n = counters[OWED]
-        if n >= owed.shape[0]:
-            return bail(tr, R_FULL), 0
-        owed[n, 0] = i
-        owed[n, 1] = b.seq_anim_done
+        owed[n, 0] = DEFERRED_ANIM_DONE
+        owed[n, 1] = i
+        owed[n, 2] = b.seq_anim_done
         counters[OWED] = n + 1
-    return move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal)
+    return move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal, owed)
 
 
 @njit(cache=True, _nrt=False)
-def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal):
+def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal, owed):
     """The second half of an active step: sweep to the candidate and commit (or keep the origin).
     Returns ``(status, events)``.
 
@@ -703,7 +750,7 @@ def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, jou
     b.cached_velocity[0] = f32(inv * offset[0])
     b.cached_velocity[1] = f32(inv32 * offset[1])
     b.cached_velocity[2] = f32(inv32 * offset[2])
-    return set_position_internal(w, tr, i, now, moves, counters, journal, events)
+    return set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
 
 
 # -- the clock ----------------------------------------------------------------------------------
@@ -826,7 +873,7 @@ def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, 
             return LOG_FULL, i
         if counters[MOVES] + MAX_STEPS_PER_UPDATE > moves.shape[0]:
             return LOG_FULL, i
-        if counters[OWED] + MAX_STEPS_PER_UPDATE > owed.shape[0]:
+        if counters[OWED] + MAX_STEPS_PER_UPDATE * DEFERRED_PER_STEP > owed.shape[0]:
             return LOG_FULL, i
         saved[0] = b
         saved_tr[0] = tr

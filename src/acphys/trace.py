@@ -30,6 +30,12 @@ from acphys.inputs import InputError, one_line, open_regular
 from acphys.math.cell_id import format_cell_id
 from acphys.physics_obj import PhysicsObj
 
+#: The schema a trace's header names (``{"schema": SCHEMA, ...}``, its first line). A trace
+#: without a header is a v1 trace: body records alone, without ``id``, ``heading`` or ``motion``.
+SCHEMA = "acphys.trace/2"
+#: The schemas :func:`read_trace` reads (v1 has no header to name one).
+SCHEMAS = (SCHEMA,)
+
 #: The keys of a record, in the order they are written.
 RECORD_KEYS = (
     "t",
@@ -135,7 +141,8 @@ class TraceWriter:
 
 
 def read_trace(path: str | Path) -> Iterator[tuple[int, dict[str, Any]]]:
-    """Yield ``(line_number, record)`` for each record of a trace file, reading one line at a time.
+    """Yield ``(line_number, record)`` for each body record of a trace file, reading one line at a
+    time; a v2 trace's header (its first record, :func:`read_header`) is not yielded.
 
     A trace of any length streams through in constant memory. A line is refused
     (:class:`TraceError` naming the file, the line and the limit) when it is
@@ -144,16 +151,33 @@ def read_trace(path: str | Path) -> Iterator[tuple[int, dict[str, Any]]]:
     digits or a string that is not text, or is not a JSON object with ``t``
     and ``body``.
     """
+    for number, record in _records(path):
+        if "schema" not in record or "body" in record:
+            yield number, record
+
+
+def read_header(path: str | Path) -> dict[str, Any] | None:
+    """The header of a v2 trace (``{"schema": SCHEMA, ...}``, its first record), or None for a
+    v1 trace (or an empty one), which has none."""
+    for _, record in _records(path):
+        return record if "schema" in record and "body" not in record else None
+    return None
+
+
+def _records(path: str | Path) -> Iterator[tuple[int, dict[str, Any]]]:
+    """Every record of a trace file, the header first if it has one (see :func:`read_trace`)."""
     label = one_line(str(path))
     with _open_trace(path, label) as handle:
         number = 0
+        first = True
         while line := handle.readline(MAX_LINE_BYTES + 1):
             number += 1
             try:
-                record = _parse_line(line)
+                record = _parse_line(line, header=first)
             except TraceError as error:
                 raise TraceError(f"{label}:{number}: {error}") from None
             if record is not None:
+                first = False
                 yield number, record
 
 
@@ -165,9 +189,10 @@ def _open_trace(path: str | Path, label: str) -> BinaryIO:
         raise TraceError(f"{label}: cannot open: {error.strerror}") from None
 
 
-def _parse_line(line: bytes) -> dict[str, Any] | None:
+def _parse_line(line: bytes, header: bool = False) -> dict[str, Any] | None:
     """The record on one line of a trace (None for a blank line), within the reader's limits;
-    a :class:`TraceError` says what is wrong with the line (the caller names the file and line)."""
+    a :class:`TraceError` says what is wrong with the line (the caller names the file and line).
+    With ``header``, the line may be a v2 header instead (an object naming its ``schema``)."""
     if len(line) > MAX_LINE_BYTES:
         raise TraceError(f"the line is longer than {MAX_LINE_BYTES} bytes, the limit for a record")
     try:
@@ -188,6 +213,10 @@ def _parse_line(line: bytes) -> dict[str, Any] | None:
         raise TraceError("a record must be a JSON object")
     if b"\\u" in line and _SURROGATE_ESCAPE.search(line) and not _is_text(record):
         raise TraceError("a string holds a lone UTF-16 surrogate escape, which is not text")
+    if header and "schema" in record and "body" not in record:
+        if record["schema"] not in SCHEMAS:
+            raise TraceError(f"unknown trace schema {brief(record['schema'])}; this acphys reads {SCHEMA}")
+        return record
     if "t" not in record or "body" not in record:
         missing = [key for key in ("t", "body") if key not in record]
         raise TraceError(f"record has no {', '.join(missing)}")

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
+from typing import Any
 
 from acphys.constants import GRAVITY
 from acphys.flags import PhysicsState, TransientState
@@ -16,6 +18,7 @@ from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 from acphys.precision import f32
 from acphys.setup import Setup, human_setup
+from acphys.trace import read_trace
 from acphys.world.world import World
 
 LANDBLOCK = 0xA9B4
@@ -84,3 +87,9 @@ def fall(z0: float, dt: float, n: int, v0: float = 0.0) -> tuple[float, float]:
             z = f32(f32(f32(dt * v) + f32(GRAVITY * 0.5) * dt * dt) + z)
         v = f32(f32(dt * GRAVITY) + v)
     return z, v
+
+
+def step_records(trace: Path) -> list[dict[str, Any]]:
+    """The records of a trace's steps, in order: its header and the records of where the run
+    started (``quantum`` 0) left out."""
+    return [record for _, record in read_trace(trace) if record["quantum"] > 0]

@@ -9,6 +9,8 @@ True
 True
 """
 
+from acphys.arrays import BodyArrays
+from acphys.body.reports import CollisionKind, CollisionReport
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState, TransitionState
 from acphys.math import Frame, Position, Vector3
 from acphys.motion import commands
@@ -22,7 +24,8 @@ from acphys.scenario import ScenarioError, load_scenario, parse_scenario
 from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.setup import Setup
 from acphys.simulation import Event, Physics, Simulation
-from acphys.trace import Divergence, TraceWriter, diff_traces, read_trace
+from acphys.trace import TraceWriter, read_header, read_trace, trace_schema
+from acphys.trace_diff import DiffReport, Divergence, compare_traces, diff_traces
 from acphys.world import ObjCell, World
 
 __version__ = "0.1.0"
@@ -31,6 +34,10 @@ __all__ = [
     "AnimData",
     "AnimFrame",
     "Animation",
+    "BodyArrays",
+    "CollisionKind",
+    "CollisionReport",
+    "DiffReport",
     "Divergence",
     "Event",
     "Frame",
@@ -56,8 +63,11 @@ __all__ = [
     "World",
     "builtin_motion_table",
     "commands",
+    "compare_traces",
     "diff_traces",
     "load_scenario",
     "parse_scenario",
+    "read_header",
     "read_trace",
+    "trace_schema",
 ]

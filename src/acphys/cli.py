@@ -21,6 +21,7 @@ from rich.text import Text
 
 from acphys import __version__
 from acphys.bench import ENGINE_CHOICES, WORKLOADS, run_suite
+from acphys.corpus import CaseResult, CorpusError, check_corpus, export_corpus, read_manifest
 from acphys.dat import REGION_ID, DatError, DatFile, unpack_region, unpack_setup
 from acphys.flags import TransientState, flag_names
 from acphys.inputs import InputError, one_line
@@ -40,7 +41,8 @@ from acphys.plot import (
 from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenarios, load_scenario
 from acphys.scenario.motion_tables import builtin_motion_table_text, builtin_motion_tables
 from acphys.simulation import ENGINES, Simulation
-from acphys.trace import TraceError, diff_traces
+from acphys.trace import TraceError, brief, trace_schema
+from acphys.trace_diff import DiffError, DiffReport, Divergence, compare_traces, split_names
 from acphys.view import show
 
 #: The bodies ``acphys run``'s summary lists (rich lays out about a row a millisecond; a run of
@@ -57,6 +59,9 @@ MAX_BENCH_BODY_SECONDS = 100_000
 #: The fast engine alone steps some hundred times faster: 10 million body-seconds (100,000 bodies
 #: for 100 s) take minutes.
 MAX_FAST_BENCH_BODY_SECONDS = 10_000_000
+#: The most records of a body ``acphys diff --context`` shows before a divergence (each body keeps
+#: as many while it is compared).
+MAX_DIFF_CONTEXT = 1000
 
 EXIT_DIVERGED = 1
 EXIT_BAD_INPUT = 2
@@ -100,10 +105,26 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     show_.add_argument("name", help=f"one of: {', '.join([*builtin_scenarios(), *builtin_motion_tables()])}")
 
-    diff = commands.add_parser("diff", help="the first divergence between two traces")
+    schema = commands.add_parser("schema", help="print the JSON Schema of a file acphys writes")
+    schema.add_argument("kind", choices=["trace"], help="trace: one line of a trace (acphys.trace/2)")
+
+    diff = commands.add_parser("diff", help="where two traces differ, their records paired per body")
     diff.add_argument("a")
     diff.add_argument("b")
     diff.add_argument("--tol", type=float, default=1e-6, help="absolute tolerance (default 1e-6)")
+    diff.add_argument("--bodies", metavar="A,B", help="only these bodies (comma-separated names)")
+    diff.add_argument("--fields", metavar="F,G", help="only these fields (origin, motion.forward, ...)")
+    diff.add_argument("--ignore", metavar="F,G", help="every field but these")
+    diff.add_argument(
+        "--all",
+        action="store_true",
+        dest="all_bodies",
+        help="read to the ends: every diverging body's first divergence, and counts per field",
+    )
+    diff.add_argument(
+        "--context", type=int, default=2, metavar="N", help="records shown before a divergence (default 2)"
+    )
+    diff.add_argument("--json", metavar="FILE", help="also write the report as JSON (-: on stdout, alone)")
 
     plot = commands.add_parser("plot", help="a PNG of a trace: paths from above, height over time, events")
     plot.add_argument("trace")
@@ -138,6 +159,21 @@ def _build_parser() -> argparse.ArgumentParser:
     setup.add_argument("id", type=_dat_id, help="the setup's id (0x02xxxxxx)")
     heights = dat_commands.add_parser("heights", help=f"the region's land height table ({REGION_ID:#010x})")
     heights.add_argument("file")
+
+    corpus = commands.add_parser("corpus", help="the conformance corpus: scenarios and golden traces")
+    corpus_commands = corpus.add_subparsers(dest="corpus_command", required=True, parser_class=_Parser)
+    export = corpus_commands.add_parser("export", help="write the scenarios, golden traces and manifest")
+    export.add_argument("dir", help="a new or empty folder, or an earlier corpus to replace")
+    export.add_argument("--cases", metavar="A,B", help="only these cases (comma-separated names)")
+    corpus_check = corpus_commands.add_parser("check", help="re-run the cases (or read --trace-dir) and diff")
+    corpus_check.add_argument("dir")
+    corpus_check.add_argument("--cases", metavar="A,B", help="only these cases (comma-separated names)")
+    corpus_check.add_argument("--engine", choices=ENGINES, default="reference", help="the engine to re-run")
+    corpus_check.add_argument("--tol", type=float, default=0.0, help="absolute tolerance (default 0)")
+    corpus_check.add_argument("--ignore", metavar="F,G", help="leave these fields out (as acphys diff does)")
+    corpus_check.add_argument(
+        "--trace-dir", metavar="DIR", help="diff the traces DIR/NAME.jsonl (a port's) instead of re-running"
+    )
     return parser
 
 
@@ -176,6 +212,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _check(console, args.scenario)
         if args.command == "show":
             return _show(args.name)
+        if args.command == "schema":
+            sys.stdout.write(json.dumps(trace_schema(), indent=2) + "\n")
+            return 0
         if args.command == "plot":
             return _plot(console, args.trace, args.output, args.bodies, args.view)
         if args.command == "view":
@@ -184,7 +223,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _bench(console, args.bodies, args.seconds, args.engine, args.workload, args.json)
         if args.command == "dat":
             return _dat(console, args)
-        return _diff(console, args.a, args.b, args.tol)
+        if args.command == "corpus":
+            return _corpus(console, args)
+        return _diff(console, args)
     except ScenarioError as error:
         return _fail("\n".join(one_line(problem) for problem in error.problems), EXIT_BAD_INPUT)
     except (TraceError, PlotError, DatError) as error:
@@ -335,15 +376,138 @@ def _show(name: str) -> int:
     )
 
 
-def _diff(console: Console, a: str, b: str, tol: float) -> int:
+def _diff(console: Console, args: argparse.Namespace) -> int:
+    """``acphys diff``: compare two traces and print the report (or write it as JSON)."""
+    tol = args.tol
     if not (math.isfinite(tol) and tol >= 0.0):
         return _fail(f"--tol must be a non-negative number, got {tol}", EXIT_BAD_INPUT)
-    divergence = diff_traces(a, b, tol)
-    if divergence is None:
-        console.print(f"identical within {tol:g}")
-        return 0
-    console.print(divergence.describe(), highlight=False, soft_wrap=True)
-    return EXIT_DIVERGED
+    if not 0 <= args.context <= MAX_DIFF_CONTEXT:
+        return _fail(
+            f"--context must be between 0 and {MAX_DIFF_CONTEXT}, got {args.context}", EXIT_BAD_INPUT
+        )
+    if args.json not in (None, "-"):
+        _check_output_file(args.json)
+    try:
+        report = compare_traces(
+            args.a,
+            args.b,
+            tol,
+            bodies=split_names(args.bodies, "--bodies"),
+            fields=split_names(args.fields, "--fields"),
+            ignore=split_names(args.ignore, "--ignore") or (),
+            all_bodies=args.all_bodies,
+            context=args.context,
+        )
+    except DiffError as error:
+        return _fail(one_line(str(error)), EXIT_BAD_INPUT)
+    for warning in report.warnings:
+        print(f"acphys: warning: {one_line(warning)}", file=sys.stderr)
+    code = 0 if report.identical else EXIT_DIVERGED
+    if args.json is not None:
+        text = json.dumps(report.as_dict(), indent=2, allow_nan=False) + "\n"
+        if args.json == "-":
+            sys.stdout.write(text)
+            return code
+        Path(args.json).write_text(text, encoding="utf-8")
+    _show_diff(console, report, args.all_bodies)
+    if args.json is not None:
+        _say(console, f"report: {args.json}")
+    return code
+
+
+def _show_diff(console: Console, report: DiffReport, all_bodies: bool) -> None:
+    """The report as text: each divergence with its context, then (``--all``) the counts."""
+    if report.identical:
+        console.print(f"identical within {report.tolerance:g}")
+    for divergence in report.divergences:
+        console.print(divergence.describe(), markup=False, highlight=False, soft_wrap=True)
+        if divergence.context:
+            console.print(_context_table(divergence))
+    if report.stopped is not None:
+        _say(console, report.stopped)
+    if not all_bodies:
+        return
+    missing = report.missing_bodies or {}
+    for side, bodies in missing.items():
+        for body in bodies:
+            _say(console, f"body {body!r} is not in {side}")
+    bodies = _count(report.bodies_compared, "body", "bodies")
+    pairs = f"{report.records_compared:,} record pairs compared"
+    _say(console, f"{len(report.divergences)} of {bodies} diverge; {pairs}")
+    for column, counts in (("field", report.field_counts), ("body", report.body_counts)):
+        if counts:
+            table = Table(box=None, padding=(0, 1), pad_edge=False)
+            table.add_column(column)
+            table.add_column("diverging records", justify="right")
+            for name, count in counts.most_common():
+                table.add_row(Text(one_line(name)), f"{count:,}")
+            console.print(table)
+
+
+def _context_table(divergence: Divergence) -> Table:
+    """The records of a diverging body before its divergence, then its own (marked >), from both
+    traces: their lines, the time, and the values that diverge and their difference."""
+    table = Table(box=None, padding=(0, 1), pad_edge=False)
+    field = one_line(divergence.field)
+    for column in ("", "line a", "line b", "t", f"{field} in a", f"{field} in b", "difference"):
+        table.add_column(Text(column), justify="left" if column.startswith(field) else "right")
+    rows = [(" ", row.line_a, row.line_b, row.t, row.a, row.b, row.difference) for row in divergence.context]
+    last = divergence
+    rows.append((">", last.line_a, last.line_b, last.t, last.a, last.b, last.difference))
+    for mark, line_a, line_b, t, a, b, difference in rows:
+        time = f"{t:.6g}" if isinstance(t, float) else brief(t, 20)
+        shown = "" if difference is None else f"{difference:.3g}"
+        table.add_row(
+            mark, str(line_a), str(line_b), Text(time), Text(brief(a, 40)), Text(brief(b, 40)), shown
+        )
+    return table
+
+
+def _corpus(console: Console, args: argparse.Namespace) -> int:
+    """``acphys corpus export`` and ``acphys corpus check``: a line per case, or a table of them."""
+    try:
+        names = None if args.cases is None else split_names(args.cases, "--cases")
+        if args.corpus_command == "export":
+            manifest = export_corpus(args.dir, names, on_case=lambda name: _say(console, f"exporting {name}"))
+            cases = _count(len(manifest["cases"]), "case", "cases")
+            records = sum(case["records"] for case in manifest["cases"])
+            _say(console, f"corpus: {cases}, {records:,} golden records in {args.dir}")
+            return 0
+        if not (math.isfinite(args.tol) and args.tol >= 0.0):
+            return _fail(f"--tol must be a non-negative number, got {args.tol}", EXIT_BAD_INPUT)
+        exported_by = read_manifest(args.dir).get("acphys")
+        if exported_by != __version__:
+            print(
+                f"acphys: warning: {one_line(args.dir)}: exported by acphys {one_line(str(exported_by))}, "
+                f"checked by {__version__}",
+                file=sys.stderr,
+            )
+        ignore = split_names(args.ignore, "--ignore") or ()
+        results = check_corpus(args.dir, args.engine, args.tol, args.trace_dir, names, ignore)
+    except (CorpusError, DiffError) as error:
+        return _fail(one_line(str(error)), EXIT_BAD_INPUT)
+    against = f"the traces in {args.trace_dir}" if args.trace_dir else f"the {args.engine} engine's"
+    console.print(_corpus_table(results, f"{args.dir}: golden traces against {against}"))
+    failed = sum(not result.passed for result in results)
+    _say(console, f"{len(results) - failed} passed, {failed} failed (--tol {args.tol:g})")
+    return EXIT_DIVERGED if failed else 0
+
+
+def _corpus_table(results: list[CaseResult], title: str) -> Table:
+    """A row per case: its group, pass or fail, the seconds it took, and its first divergence."""
+    table = Table(title=Text(one_line(title)))
+    for column in ("case", "group", "result", "s", "first divergence"):
+        wrap = column == "first divergence"
+        table.add_column(column, justify="right" if column == "s" else "left", no_wrap=not wrap)
+    for result in results:
+        table.add_row(
+            Text(result.name),
+            Text(result.group),
+            Text("pass", style="green") if result.passed else Text("FAIL", style="bold red"),
+            f"{result.seconds:.2f}",
+            Text("" if result.passed else one_line(result.describe())),
+        )
+    return table
 
 
 def _plot(console: Console, trace: str, output: str, bodies: str | None, view: str | None) -> int:

@@ -102,6 +102,11 @@ PS = member_namespace(PhysicsState)
 TS = member_namespace(TransientState)
 OI = member_namespace(ObjectInfoState)
 
+#: The flag of a value already made (``PhysicsState(value)`` looks there too, at four times the
+#: cost): the public ``state`` and ``transient_state`` are read once a record by the trace writer.
+_PHYSICS_STATES = PhysicsState._value2member_map_.get
+_TRANSIENT_STATES = TransientState._value2member_map_.get
+
 #: Called after every ``update_object_internal`` with the body and the quantum integrated.
 StepObserver = Callable[["PhysicsObj", float], None]
 
@@ -135,8 +140,10 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         #: ``children``: the objects this body holds (``CHILDLIST``), made on the first.
         self.children: ChildList | None = None
 
-        self.state: PhysicsState = DEFAULT_PHYSICS_STATE
-        self.transient_state: TransientState = TransientState(0)
+        #: ``state`` and ``transient_state`` as the tick keeps them: plain ints (bit tests on an
+        #: ``IntFlag`` cost more); the public :attr:`state` and :attr:`transient_state` are the flags.
+        self._state: int = int(DEFAULT_PHYSICS_STATE)
+        self._transient_state: int = 0
         self.position = Position()
         self.cell: ObjCell | None = None
 
@@ -191,6 +198,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self.step_events: list[str] = []
         #: Called after every physics step; the simulation's tracer hangs here.
         self.observer: StepObserver | None = None
+        #: The user's step callback, called after ``observer`` with the same arguments (the step's
+        #: ``step_events`` still there); ``Simulation.on_step`` hangs its callbacks here.
+        self.on_step: StepObserver | None = None
         #: ``collision_table``: the objects touched lately; made by the first object collision.
         self.collision_table: CollisionTable | None = None
         #: Receives this body's collision reports (retail's weenie ``DoCollision*`` callbacks).
@@ -198,6 +208,37 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
     def __repr__(self) -> str:
         return f"PhysicsObj({self.name!r}, {self.position!r})"
+
+    # -- the state flags ------------------------------------------------------------------
+
+    @property
+    def state(self) -> PhysicsState:
+        """``CPhysicsObj::state``, a :class:`PhysicsState` (``<PhysicsState.REPORT_COLLISIONS|...>``).
+
+        Set it to a ``PhysicsState`` or an int of its bits; :meth:`set_state` is retail's way to
+        change it (it also hides or unhides the body). Bit operators on it give plain ints.
+        """
+        value = self._state
+        flag = _PHYSICS_STATES(value)
+        return flag if flag is not None else PhysicsState(value)
+
+    @state.setter
+    def state(self, value: int) -> None:
+        self._state = int(value)
+
+    @property
+    def transient_state(self) -> TransientState:
+        """``CPhysicsObj::transient_state``, a :class:`TransientState`
+        (``<TransientState.CONTACT|ON_WALKABLE|ACTIVE: 131>``). The tick sets it; bit operators on
+        it give plain ints (``body.transient_state & TransientState.CONTACT``).
+        """
+        value = self._transient_state
+        flag = _TRANSIENT_STATES(value)
+        return flag if flag is not None else TransientState(value)
+
+    @transient_state.setter
+    def transient_state(self, value: int) -> None:
+        self._transient_state = int(value)
 
     # -- the clock: update_object --------------------------------------------------------
 
@@ -219,8 +260,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
         """
         world = self.world
-        if self.parent is not None or self.cell is None or self.state & PS.FROZEN:
-            self.transient_state &= ~TS.ACTIVE
+        if self.parent is not None or self.cell is None or self._state & PS.FROZEN:
+            self._transient_state &= ~TS.ACTIVE
             return
         player = world.player
         if player is not None:
@@ -228,7 +269,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             distance = self.player_vector.length()
             self.player_distance = f32(distance)
             if distance > ACTIVITY_DISTANCE and world.activity_cull:
-                self.transient_state &= ~TS.ACTIVE
+                self._transient_state &= ~TS.ACTIVE
             else:
                 self.set_active(True)
 
@@ -260,6 +301,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self.update_object_internal(step)
         if self.observer is not None:
             self.observer(self, step)
+        if self.on_step is not None:
+            self.on_step(self, step)
         self.step_events.clear()
 
     # -- one step: update_object_internal --------------------------------------------------
@@ -273,10 +316,10 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
         """
-        if self.transient_state & TS.ACTIVE:
+        if self._transient_state & TS.ACTIVE:
             if self.cell is None:
                 return
-            if self.transient_state & TS.CHECK_ETHEREAL:
+            if self._transient_state & TS.CHECK_ETHEREAL:
                 self.set_ethereal(False, send_event=False)
             self.jumped_this_frame = False
 
@@ -296,8 +339,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
                     else:
                         self._keep_origin(new_pos.frame)
             else:
-                if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
-                    self.transient_state &= ~TS.ACTIVE
+                if self.movement_manager is None and self._transient_state & TS.ON_WALKABLE:
+                    self._transient_state &= ~TS.ACTIVE
                 self._keep_origin(new_pos.frame)
 
             if self.detection_manager is not None:
@@ -330,9 +373,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Part of UpdateObjectInternal (acclient.c:322800-322810).
         """
-        if self.state & PS.ALIGN_PATH:
+        if self._state & PS.ALIGN_PATH:
             candidate.set_vector_heading((candidate.origin - self.position.frame.origin).normalized())
-        elif self.state & PS.SLEDDING and not self.velocity.is_zero():
+        elif self._state & PS.SLEDDING and not self.velocity.is_zero():
             candidate.set_heading(self.velocity.get_heading())
 
     # -- the candidate frame ---------------------------------------------------------------
@@ -348,16 +391,16 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988)
         """
         offset = Frame()
-        if not self.state & PS.HIDDEN:
+        if not self._state & PS.HIDDEN:
             if self.part_array is not None:
                 self.part_array.update(quantum, offset)
-            factor = self.scale if self.transient_state & TS.ON_WALKABLE else 0.0
+            factor = self.scale if self._transient_state & TS.ON_WALKABLE else 0.0
             o = offset.origin
             o.x, o.y, o.z = unpack3(pack3(o.x * factor, o.y * factor, o.z * factor))
         if self.position_manager is not None:
             self.position_manager.adjust_offset(offset, quantum)
         new_frame.combine(self.position.frame, offset)
-        if not self.state & PS.HIDDEN:
+        if not self._state & PS.HIDDEN:
             self.update_physics_internal(quantum, new_frame)
         self.process_hooks()
 
@@ -380,8 +423,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         a = self.acceleration
         velocity_mag2 = f32(v.x * v.x + v.y * v.y + v.z * v.z)
         if velocity_mag2 <= 0.0:
-            if self.movement_manager is None and self.transient_state & TS.ON_WALKABLE:
-                self.transient_state &= ~TS.ACTIVE
+            if self.movement_manager is None and self._transient_state & TS.ON_WALKABLE:
+                self._transient_state &= ~TS.ACTIVE
         else:
             if velocity_mag2 > MAX_VELOCITY * MAX_VELOCITY:
                 v = self.velocity = v.normalized() * MAX_VELOCITY
@@ -420,7 +463,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::calc_friction @ 0x0050EE70 (acclient.c:316090)
         """
-        if not self.transient_state & TS.ON_WALKABLE:
+        if not self._transient_state & TS.ON_WALKABLE:
             return
         n = self.contact_plane.N
         v = self.velocity
@@ -430,7 +473,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         dz = f32(normal_speed * n.z)
         v.x, v.y, v.z = unpack3(pack3(v.x - normal_speed * n.x, v.y - normal_speed * n.y, v.z - dz))
         friction = self.friction
-        if self.state & PS.SLEDDING:
+        if self._state & PS.SLEDDING:
             if velocity_mag2 < SLEDDING_STOP_SPEED2:
                 friction = 1.0
             elif velocity_mag2 >= SLEDDING_FAST_SPEED2 and n.z < SLEDDING_STEEP_Z:
@@ -445,11 +488,11 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::calc_acceleration @ 0x00510950 (acclient.c:317786)
         """
-        ts = self.transient_state
-        if ts & TS.CONTACT and ts & TS.ON_WALKABLE and not self.state & PS.SLEDDING:
+        ts = self._transient_state
+        if ts & TS.CONTACT and ts & TS.ON_WALKABLE and not self._state & PS.SLEDDING:
             self.acceleration = zero_vector()
             self.omega = zero_vector()
-        elif self.state & PS.GRAVITY:
+        elif self._state & PS.GRAVITY:
             self.acceleration = Vector3(0.0, 0.0, GRAVITY)
         else:
             self.acceleration = zero_vector()
@@ -459,11 +502,11 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::set_on_walkable @ 0x00511310 (acclient.c:318501)
         """
-        was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
+        was_on_walkable = bool(self._transient_state & TS.ON_WALKABLE)
         if is_on_walkable:
-            self.transient_state |= TS.ON_WALKABLE
+            self._transient_state |= TS.ON_WALKABLE
         else:
-            self.transient_state &= ~TS.ON_WALKABLE
+            self._transient_state &= ~TS.ON_WALKABLE
         if was_on_walkable and not is_on_walkable:
             self._leave_ground()
         elif not was_on_walkable and is_on_walkable:
@@ -494,7 +537,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             committed = frame.copy()  # only this case changes it, and the caller's frame stays as it was
             committed.qw = committed.qx = committed.qy = committed.qz = 0.0
         self.position.frame.assign(committed)
-        if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
+        if not self._state & PS.PARTICLE_EMITTER and self.part_array is not None:
             self.part_array.set_frame(self.position.frame)
         if self.children is not None:
             self.update_children_internal()
@@ -518,7 +561,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
             else:
                 transit.init_sphere([DUMMY_SPHERE], 1.0)
             transit.init_path(self.cell, old_pos, new_pos)
-            ts = self.transient_state
+            ts = self._transient_state
             if ts & TS.STATIONARY_STUCK:
                 transit.collision_info.frames_stationary_fall = 3
             elif ts & TS.STATIONARY_STOP:
@@ -541,24 +584,24 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::get_object_info @ 0x00511CC0 (acclient.c:319073)
         """
-        state = OI.EDGE_SLIDE if self.state & PS.EDGE_SLIDE else OI.DEFAULT
+        state = OI.EDGE_SLIDE if self._state & PS.EDGE_SLIDE else OI.DEFAULT
         if not admin_move:
-            if self.transient_state & TS.CONTACT:
-                is_water = bool(self.transient_state & TS.WATER_CONTACT)
+            if self._transient_state & TS.CONTACT:
+                is_water = bool(self._transient_state & TS.WATER_CONTACT)
                 if self.check_contact(True):
                     transit.init_contact_plane(self.contact_plane_cell_id, self.contact_plane, is_water)
                     state |= OI.CONTACT
-                    if self.transient_state & TS.ON_WALKABLE:
+                    if self._transient_state & TS.ON_WALKABLE:
                         state |= OI.ON_WALKABLE
                 else:
                     transit.init_last_known_contact_plane(
                         self.contact_plane_cell_id, self.contact_plane, is_water
                     )
-            if self.transient_state & TS.SLIDING:
+            if self._transient_state & TS.SLIDING:
                 transit.init_sliding_normal(self.sliding_normal)
         if self.part_array is not None and self.part_array.allows_free_heading():
             state |= OI.FREE_ROTATE
-        if self.state & PS.MISSILE:
+        if self._state & PS.MISSILE:
             state |= OI.PATH_CLIPPED
         return state
 
@@ -570,7 +613,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::check_contact @ 0x0050F5B0 (acclient.c:316535)
         """
-        if self.transient_state & TS.CONTACT:
+        if self._transient_state & TS.CONTACT:
             v, n = self.velocity, self.contact_plane.N
             if v.z * n.z + v.y * n.y + v.x * n.x > EPSILON:
                 return False
@@ -589,15 +632,15 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
         """
-        prev_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
-        prev_contact = bool(self.transient_state & TS.CONTACT)
+        prev_on_walkable = bool(self._transient_state & TS.ON_WALKABLE)
+        prev_contact = bool(self._transient_state & TS.CONTACT)
         path = transit.sphere_path
         info = transit.collision_info
         if path.curr_cell is None:
             self.prepare_to_leave_visibility()
             self.store_position(path.curr_pos)
             self.world.goto_lost_cell(self)
-            self.transient_state &= ~TS.ACTIVE
+            self._transient_state &= ~TS.ACTIVE
             return
         if self.cell is path.curr_cell:
             self.position.objcell_id = path.curr_pos.objcell_id
@@ -610,11 +653,11 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self._set_transient(TS.CONTACT, info.contact_plane_valid)
         self.calc_acceleration()
         self._set_transient(TS.WATER_CONTACT, info.contact_plane_is_water)
-        if self.transient_state & TS.CONTACT:
+        if self._transient_state & TS.CONTACT:
             self.set_on_walkable(self.contact_plane.N.z >= FLOOR_Z)
         else:
-            was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
-            self.transient_state &= ~TS.ON_WALKABLE
+            was_on_walkable = bool(self._transient_state & TS.ON_WALKABLE)
+            self._transient_state &= ~TS.ON_WALKABLE
             if was_on_walkable:
                 self._leave_ground()
             self.calc_acceleration()
@@ -623,7 +666,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         self._set_transient(TS.SLIDING, info.sliding_normal_valid)
         self.handle_all_collisions(info, prev_contact, prev_on_walkable)
         if self.cell is not None:
-            if self.state & PS.HAS_PHYSICS_BSP:
+            if self._state & PS.HAS_PHYSICS_BSP:
                 self.calc_cross_cells()
             elif transit.cell_array.num_cells:
                 self.remove_shadows_from_cells()
@@ -631,9 +674,9 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
     def _set_transient(self, flag: TransientState, on: bool) -> None:
         if on:
-            self.transient_state |= flag
+            self._transient_state |= flag
         else:
-            self.transient_state &= ~flag
+            self._transient_state &= ~flag
 
     def handle_all_collisions(
         self, collisions: CollisionInfo, prev_has_contact: bool, prev_on_walkable: bool
@@ -655,8 +698,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807)
         """
-        on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
-        apply_bounce = not (prev_on_walkable and on_walkable) or bool(self.state & PS.SLEDDING)
+        on_walkable = bool(self._transient_state & TS.ON_WALKABLE)
+        apply_bounce = not (prev_on_walkable and on_walkable) or bool(self._state & PS.SLEDDING)
         reported = False
         for obj in list(collisions.collide_object):
             if obj is not None and self.track_object_collision(obj, prev_has_contact):
@@ -672,7 +715,7 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         frames = collisions.frames_stationary_fall
         if frames <= 1:
             if apply_bounce and collisions.collision_normal_valid:
-                if self.state & PS.INELASTIC:
+                if self._state & PS.INELASTIC:
                     self.velocity = zero_vector()
                 else:
                     n = collisions.collision_normal
@@ -686,13 +729,13 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         else:
             self.velocity = zero_vector()
         if frames in (0, 3):
-            self.transient_state &= ~STATIONARY_MASK
+            self._transient_state &= ~STATIONARY_MASK
         elif frames == 1:
-            self.transient_state |= TS.STATIONARY_FALL
+            self._transient_state |= TS.STATIONARY_FALL
         elif frames == 2:
-            self.transient_state |= TS.STATIONARY_STOP
+            self._transient_state |= TS.STATIONARY_STOP
         else:
-            self.transient_state |= TS.STATIONARY_STUCK
+            self._transient_state |= TS.STATIONARY_STUCK
         return reported
 
     # -- state setters ---------------------------------------------------------------------
@@ -703,13 +746,13 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Retail: CPhysicsObj::set_active @ 0x0050FC40 (acclient.c:316979)
         """
         if not active:
-            self.transient_state &= ~TS.ACTIVE
+            self._transient_state &= ~TS.ACTIVE
             return True
-        if self.state & PS.STATIC:
+        if self._state & PS.STATIC:
             return False
-        if not self.transient_state & TS.ACTIVE:
+        if not self._transient_state & TS.ACTIVE:
             self.update_time = self.world.cur_time
-        self.transient_state |= TS.ACTIVE
+        self._transient_state |= TS.ACTIVE
         return True
 
     def set_velocity(self, new_velocity: Vector3) -> None:
@@ -776,8 +819,8 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
 
         Retail: CPhysicsObj::set_state @ 0x00514DD0 (acclient.c:322171)
         """
-        changed = new_state ^ self.state
-        self.state = new_state
+        changed = new_state ^ self._state
+        self._state = int(new_state)
         if changed & PS.HIDDEN:
             self.set_hidden(bool(new_state & PS.HIDDEN))
 
@@ -792,17 +835,17 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Retail: CPhysicsObj::set_hidden @ 0x00514C60 (acclient.c:322077)
         """
         if hidden:
-            self.state |= PS.HIDDEN
-            if self.state & PS.REPORT_COLLISIONS:
+            self._state |= PS.HIDDEN
+            if self._state & PS.REPORT_COLLISIONS:
                 self.report_collision_end(True)
-                self.state &= ~PS.REPORT_COLLISIONS
-            self.state |= PS.IGNORE_COLLISIONS
+                self._state &= ~PS.REPORT_COLLISIONS
+            self._state |= PS.IGNORE_COLLISIONS
             if self.cell is not None:
                 self.cell.hide_object(self)
         else:
-            self.state &= ~(PS.HIDDEN | PS.IGNORE_COLLISIONS)
-            if not self.state & PS.REPORT_COLLISIONS:
-                self.state |= PS.REPORT_COLLISIONS
+            self._state &= ~(PS.HIDDEN | PS.IGNORE_COLLISIONS)
+            if not self._state & PS.REPORT_COLLISIONS:
+                self._state |= PS.REPORT_COLLISIONS
                 self.report_collision_start()
             if self.cell is not None:
                 self.cell.unhide_object(self)
@@ -816,15 +859,15 @@ class PhysicsObj(CollisionReports, CellMembership, Children, Effects, Motion, Ma
         Retail: CPhysicsObj::set_ethereal @ 0x00511C40 (acclient.c:319046)
         """
         if ethereal:
-            self.state |= PS.ETHEREAL
-            self.transient_state &= ~TS.CHECK_ETHEREAL
+            self._state |= PS.ETHEREAL
+            self._transient_state &= ~TS.CHECK_ETHEREAL
             return True
-        self.state &= ~PS.ETHEREAL
+        self._state &= ~PS.ETHEREAL
         if self.parent is not None or self.cell is None or not self.ethereal_check_for_collisions():
-            self.transient_state &= ~TS.CHECK_ETHEREAL
+            self._transient_state &= ~TS.CHECK_ETHEREAL
             return True
-        self.transient_state |= TS.CHECK_ETHEREAL
-        self.state |= PS.ETHEREAL
+        self._transient_state |= TS.CHECK_ETHEREAL
+        self._state |= PS.ETHEREAL
         return False
 
     def ethereal_check_for_collisions(self) -> bool:

@@ -359,7 +359,9 @@ class PathRecorder:
         return self._collector.paths
 
     def attach(self, bodies: Iterable[PhysicsObj]) -> None:
+        """Record where each body starts (as a trace's start records do), then its every step."""
         for body in bodies:
+            self._collector.add(step_record(body, 0.0), f"<run>:{one_line(body.name)}")
             body.observer = self.record_step
 
     def detach(self, bodies: Iterable[PhysicsObj]) -> None:

@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import bisect
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from acphys.constants import HUGE_QUANTUM, MIN_QUANTUM
 from acphys.physics_obj import PhysicsObj
 from acphys.world.world import World
+
+if TYPE_CHECKING:
+    from acphys.arrays import BodyArrays
+    from acphys.scenario.live import ScenarioParts
 
 #: ``CObjectMaint::object_table``, the table ``CPhysics::UseTime`` walks, is a
 #: ``LongHash`` of 128 buckets with a key shift of 8; it never grows.
@@ -110,6 +115,19 @@ class Event:
     source: str = field(compare=False, default="")
 
 
+class Callbacks(list[Callable[[PhysicsObj, Any], Any]]):
+    """The callbacks a simulation calls for every body, in the order they were registered
+    (:meth:`Simulation.on_step`, :meth:`Simulation.on_collision`): hung on each body's hook
+    (``on_step``, ``on_collision``) as one callable."""
+
+    def __call__(self, body: PhysicsObj, value: Any) -> None:
+        for callback in tuple(self):  # a callback may remove itself
+            callback(body, value)
+
+
+C = TypeVar("C", bound=Callable[..., Any])
+
+
 #: The engines a simulation can run on (``Simulation(engine=...)``).
 ENGINES = ("reference", "fast")
 
@@ -181,20 +199,230 @@ class Simulation:
         self.tick_seconds = driver_tick_seconds(driver_hz)
         self.duration = duration
         self.name = name
+        #: The SHA-256 of the scenario the simulation was built from (its text), for trace headers.
+        self.scenario_sha256: str | None = None
         #: What the scenario reader found odd but loaded (one line each), for the user to see.
         self.warnings: list[str] = []
         self.tick = 0
+        #: What the simulation's scenario declared, for :meth:`add_body` and :meth:`add_event`
+        #: (set by the scenario reader; None: only the built-in setups and motion tables).
+        self.scenario_parts: ScenarioParts | None = None
+        self._step_callbacks = Callbacks()
+        self._collision_callbacks = Callbacks()
+        #: True while ``use_time`` runs the bodies: no body or callback may be added then.
+        self._in_use_time = False
         self._bodies: dict[str, PhysicsObj] = {}
         for body in bodies:
             self.add_body(body)
         self._events = sorted(events)
         self._next_event = 0
 
-    def add_body(self, body: PhysicsObj) -> None:
+    def add_body(self, body: PhysicsObj | Mapping[str, Any] | None = None, **keys: Any) -> PhysicsObj:
+        """Add a body, before the first step or between steps (it runs from the next tick on, in
+        its place in the object table's order), and return it.
+
+        ``body`` is a :class:`PhysicsObj` made in this simulation's world, or the keys of a
+        scenario ``[[body]]`` table, as a mapping or as keyword arguments::
+
+            sim.add_body(name="crate-2", setup="crate", landblock="0xA9B4", origin=[60, 90, 50],
+                         on_ground=True)
+
+        read and placed as the scenario reader does (``setup`` and ``motion_table`` may name the
+        scenario's own, :mod:`acphys.scenario.live`); a bad key is a ``ScenarioError`` (a
+        ValueError) naming it, and leaves nothing in the world. A name another body has is a
+        ValueError. The simulation's step and collision callbacks reach the new body too.
+        From inside a step (a step or collision callback) it is a RuntimeError: add bodies
+        between steps, or from an event (:meth:`add_event`).
+        """
+        self._refuse_in_step("add a body")
+        if body is None or isinstance(body, Mapping):
+            if body is not None and keys:
+                raise TypeError("add_body takes a body's keys as a mapping or as keyword arguments, not both")
+            table = dict(body) if body is not None else keys
+            name = table.get("name")
+            if isinstance(name, str) and name in self._bodies:
+                raise ValueError(f"two bodies are named {name!r}")
+            self.physics.sync_objects()  # the world the new body is placed in is current
+            body, warnings = self._scenario_parts().read_body(self.world, table)
+            self.warnings.extend(warnings)
+        elif keys:
+            raise TypeError("add_body takes keys only to make a body, not with a PhysicsObj")
+        elif not isinstance(body, PhysicsObj):
+            raise TypeError(f"add_body takes a PhysicsObj or a body's keys, got {type(body).__name__}")
+        elif body.world is not self.world:
+            raise ValueError(f"body {body.name!r} was made in another world than the simulation's")
         if body.name in self._bodies:
             raise ValueError(f"two bodies are named {body.name!r}")
+        self._check_hooks([body])
         self._bodies[body.name] = body
         self.physics.add(body)
+        self._hang_callbacks(body)
+        return body
+
+    def add_event(
+        self,
+        at: float,
+        body: str | PhysicsObj,
+        action: str | Callable[[PhysicsObj], Any],
+        **keys: Any,
+    ) -> Event:
+        """Schedule ``action`` on ``body`` (a name or the body) at ``at`` seconds, and return the
+        event. Any time: before the run, between steps, from a callback.
+
+        ``action`` is a scenario event action (``"motion"``, ``"jump"``, ``"set_velocity"``,
+        ``"move_to"``, ... the ``[[event]]`` actions) with its keys as keyword arguments, checked
+        as a scenario file's are (a ``ScenarioError``, a ValueError, naming the key)::
+
+            sim.add_event(2.0, "runner", "motion", motion="RunForward", hold_run=True)
+
+        or a function of the body, called then (``sim.add_event(2.0, "ball", lambda b: ...)``).
+        The event is applied at the first driver tick at or after ``at`` that has not run yet,
+        after the events already due then (an event at the current time: the next tick). A time
+        already past is a ValueError.
+        """
+        if isinstance(at, bool) or not isinstance(at, int | float) or not math.isfinite(at):
+            raise ValueError(f"an event's time must be a finite number of seconds, got {at!r}")
+        if at < self.time:
+            raise ValueError(
+                f"an event at {at:g} s is in the past: the simulation is at {self.time:g} s "
+                f"(driver tick {self.tick}); give a time of at least {self.time:g} s"
+            )
+        if isinstance(body, PhysicsObj):
+            if self._bodies.get(body.name) is not body:
+                raise ValueError(f"body {body.name!r} is not one of this simulation's")
+            body = body.name
+        if callable(action):
+            if keys:
+                raise TypeError("an event whose action is a function takes no keys")
+            self.body(body)  # a KeyError naming the bodies when there is none of that name
+            name = getattr(action, "__name__", type(action).__name__)
+            event = Event(at=float(at), body=body, action=name, apply=action, source="add_event")
+        else:
+            event = self._scenario_parts().read_event(float(at), body, action, keys, self._bodies)
+        place = bisect.bisect_right(self._events, event.at, lo=self._next_event, key=lambda e: e.at)
+        self._events.insert(place, event)
+        return event
+
+    # -- callbacks --------------------------------------------------------------------------
+
+    def on_step(self, callback: C) -> C:
+        """Call ``callback(body, quantum)`` after every physics step of every body (bodies added
+        later too), ``quantum`` the seconds the step integrated; the body is as the step left it,
+        its ``step_events`` (``"hit_ground"``, ``"collision:NAME"``, ...) still there. Callbacks run
+        in the order registered, after a trace's record of the step. Returns ``callback`` (so it
+        can decorate). On the fast engine a body with callbacks runs on the reference path.
+
+        It hangs on each body's ``on_step`` hook: a body whose ``on_step`` was set by hand is a
+        ValueError. Register callbacks before the first step or between steps (from inside one:
+        RuntimeError); :meth:`remove_callback` takes one away at any time.
+        """
+        self._register(self._step_callbacks, "on_step", callback)
+        return callback
+
+    def on_collision(self, callback: C) -> C:
+        """Call ``callback(body, report)`` for every collision report a body receives (bodies
+        added later too): a :class:`~acphys.physics_obj.CollisionReport` of the environment, of
+        another object, of a missile's hit, or of a collision's end (``report.kind``,
+        ``report.other``, ``report.velocity``, ...), as retail hands them to the body's weenie. A body
+        receives reports only with ``REPORT_COLLISIONS`` in its ``state``. Returns ``callback``.
+        On the fast engine a body with callbacks runs on the reference path.
+
+        It hangs on each body's ``on_collision`` hook, under the same rules as :meth:`on_step`.
+        """
+        self._register(self._collision_callbacks, "on_collision", callback)
+        return callback
+
+    def remove_callback(self, callback: Callable[..., Any]) -> None:
+        """Stop calling ``callback`` (every registration of it, by :meth:`on_step` or
+        :meth:`on_collision`); a callback that is neither is a ValueError. Allowed at any time,
+        from inside the callback too."""
+        found = False
+        for callbacks in (self._step_callbacks, self._collision_callbacks):
+            while callback in callbacks:
+                callbacks.remove(callback)
+                found = True
+        if not found:
+            raise ValueError(f"{callback!r} is not a step or collision callback of this simulation")
+        for body in self._bodies.values():
+            self._hang_callbacks(body)
+        if not self._in_use_time:
+            self.physics.sync_objects()  # the fast engine may take the bodies back into its kernel
+
+    def _register(self, callbacks: Callbacks, hook: str, callback: Callable[..., Any]) -> None:
+        if not callable(callback):
+            raise TypeError(f"a callback must be callable, got {type(callback).__name__}")
+        self._refuse_in_step("register a callback")
+        for body in self._bodies.values():
+            own = getattr(body, hook)
+            if own is not None and own is not callbacks:
+                raise ValueError(
+                    f"body {body.name!r} has its own {hook} ({own!r}): the simulation's callbacks "
+                    f"would replace it; set body.{hook} = None first"
+                )
+        callbacks.append(callback)
+        self.physics.sync_objects()  # the fast engine sees the bodies' new hooks
+        for body in self._bodies.values():
+            self._hang_callbacks(body)
+
+    def _check_hooks(self, bodies: Iterable[PhysicsObj]) -> None:
+        """Refuse (ValueError) a body whose own hook the simulation's callbacks would replace."""
+        for body in bodies:
+            for hook, callbacks in self._hooks():
+                own = getattr(body, hook)
+                if callbacks and own is not None and own is not callbacks:
+                    raise ValueError(
+                        f"body {body.name!r} has its own {hook} ({own!r}), and the simulation has "
+                        f"{hook} callbacks that would replace it"
+                    )
+
+    def _hooks(self) -> tuple[tuple[str, Callbacks], ...]:
+        """Each body hook the simulation's callbacks hang on, with those callbacks."""
+        return (("on_step", self._step_callbacks), ("on_collision", self._collision_callbacks))
+
+    def _hang_callbacks(self, body: PhysicsObj) -> None:
+        """Point ``body``'s hooks at the simulation's callbacks, or clear them when there are none."""
+        for hook, callbacks in self._hooks():
+            own = getattr(body, hook)
+            if callbacks and own is None:
+                setattr(body, hook, callbacks)
+            elif not callbacks and own is callbacks:
+                setattr(body, hook, None)
+
+    def _refuse_in_step(self, what: str) -> None:
+        if self._in_use_time:
+            raise RuntimeError(
+                f"cannot {what} while the bodies are being stepped (from a step or collision "
+                "callback): do it between steps, or from an event (add_event)"
+            )
+
+    def _scenario_parts(self) -> ScenarioParts:
+        if self.scenario_parts is None:
+            from acphys.scenario.live import ScenarioParts
+
+            self.scenario_parts = ScenarioParts()
+        return self.scenario_parts
+
+    # -- state as arrays ----------------------------------------------------------------------
+
+    def arrays(self) -> BodyArrays:
+        """Every body's state as NumPy arrays in one call, a row per body in :attr:`bodies`
+        order (``names``): ``positions`` (map-wide, (N, 3)), ``origins`` (landblock-local) and
+        ``cell_ids``, ``orientations`` ((N, 4), w first), ``velocities``, ``cached_velocities``,
+        ``omegas`` and ``transient_states``; see :class:`acphys.arrays.BodyArrays`."""
+        from acphys.arrays import body_arrays
+
+        if not self._in_use_time:
+            self.physics.sync_objects()  # the fast engine's bodies written back
+        return body_arrays(self._bodies.values())
+
+    def positions(self) -> Any:
+        """Every body's origin in the map-wide frame, an (N, 3) array in :attr:`bodies` order
+        (``arrays().positions``)."""
+        return self.arrays().positions
+
+    def velocities(self) -> Any:
+        """Every body's ``velocity``, an (N, 3) array in :attr:`bodies` order (``arrays().velocities``)."""
+        return self.arrays().velocities
 
     def body(self, name: str) -> PhysicsObj:
         try:
@@ -231,7 +459,11 @@ class Simulation:
             self._next_event += 1
         if self._next_event > first:
             self.physics.apply_events(self._events[first : self._next_event], self.body)
-        self.physics.use_time()
+        self._in_use_time = True
+        try:
+            self.physics.use_time()
+        finally:
+            self._in_use_time = False
 
     def check_until(self, until: float) -> None:
         """Refuse (ValueError) a time to run to that is not a finite number of seconds, or that
@@ -261,9 +493,13 @@ class Simulation:
         if trace is None:
             self._run_until(end, progress)
             return
-        from acphys.trace import TraceWriter
+        from acphys.trace import TraceWriter, trace_header
 
-        with TraceWriter(trace) as writer:
+        header = trace_header(self.name, self.scenario_sha256, self.driver_hz, self.engine)
+        with TraceWriter(trace, header) as writer:
+            self.physics.sync_objects()
+            mine = {id(body) for body in self.bodies}
+            writer.write_start(body for body in self.physics.objects if id(body) in mine)
             writer.attach(self.bodies)
             self.physics.set_trace_writer(writer)
             try:

@@ -1,33 +1,46 @@
 """Traces (contract 2): one JSON record per body per physics step, and their diff.
 
-A record is written after every ``update_object_internal`` call::
+A trace (schema ``acphys.trace/2``, :data:`SCHEMA`; the JSON Schema is :func:`trace_schema`)
+opens with a header naming what wrote it::
 
-    {"t": 0.05, "body": "runner", "quantum": 0.05, "cell": "0xA9B40021",
-     "origin": [x, y, z], "orientation": [w, x, y, z],
+    {"schema": "acphys.trace/2", "acphys": "0.1.0", "engine": "reference", "driver_hz": 30.0,
+     "scenario": {"name": "yard", "sha256": "..."}}
+
+then holds one record per body as the run starts (``quantum`` 0, no events), and one after every
+``update_object_internal`` call::
+
+    {"t": 0.05, "body": "runner", "id": "0x80000001", "quantum": 0.05, "cell": "0xA9B40021",
+     "origin": [x, y, z], "orientation": [w, x, y, z], "heading": 90.0,
      "velocity": [...], "cached_velocity": [...], "omega": [...],
-     "transient": ["active", "contact", "on_walkable"],
-     "contact_normal": [...] or null, "events": ["hit_ground"]}
+     "transient": ["active", "contact", "on_walkable"], "contact_normal": [...] or null,
+     "motion": {"style": "NonCombat", "forward": "WalkForward", "forward_speed": 1.0, ...},
+     "events": ["hit_ground"]}
 
 ``t`` is the physics time after the step; ``origin`` is local to the
-landblock named by ``cell``; ``contact_normal`` is the contact plane's normal
-while the body is in contact.
+landblock named by ``cell``; ``heading`` is the compass heading of ``orientation``;
+``contact_normal`` is the contact plane's normal while the body is in contact; ``motion`` is
+the motion interpreter's state and the animation playing (null for a body without parts).
+A v1 trace (acphys before the header) has no header, no start records, no ``id``, ``heading``
+or ``motion``; the readers take both.
 """
 
 from __future__ import annotations
 
 import errno
 import json
-import math
 import os
 import re
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 from typing import Any, BinaryIO, TextIO
 
 from acphys.flags import TransientState, flag_names
 from acphys.inputs import InputError, one_line, open_regular
 from acphys.math.cell_id import format_cell_id
+from acphys.math.frame import Frame
+from acphys.motion.commands import motion_name
+from acphys.motion.movement import HoldKey
 from acphys.physics_obj import PhysicsObj
 
 #: The schema a trace's header names (``{"schema": SCHEMA, ...}``, its first line). A trace
@@ -40,16 +53,32 @@ SCHEMAS = (SCHEMA,)
 RECORD_KEYS = (
     "t",
     "body",
+    "id",
     "quantum",
     "cell",
     "origin",
     "orientation",
+    "heading",
     "velocity",
     "cached_velocity",
     "omega",
     "transient",
     "contact_normal",
+    "motion",
     "events",
+)
+#: The keys of a record's ``motion``, in the order they are written.
+MOTION_KEYS = (
+    "style",
+    "forward",
+    "forward_speed",
+    "sidestep",
+    "sidestep_speed",
+    "turn",
+    "turn_speed",
+    "hold_key",
+    "animation",
+    "frame",
 )
 
 
@@ -75,30 +104,102 @@ class TraceError(ValueError):
 
 
 def step_record(body: PhysicsObj, quantum: float) -> dict[str, Any]:
-    """The trace record of ``body`` right after a step of ``quantum`` seconds."""
+    """The trace record of ``body`` right after a step of ``quantum`` seconds (0: the record of
+    where a run starts, without the events the first step will report)."""
     frame = body.position.frame
     in_contact = body.transient_state & TransientState.CONTACT
+    orientation = [frame.qw, frame.qx, frame.qy, frame.qz]
+    sequence = body.part_array.sequence if body.part_array is not None else None
+    node = sequence.curr_anim if sequence is not None else None
+    playing = node is not None and node.animation is not None
     return {
         "t": body.world.physics_time,
         "body": body.name,
+        "id": f"0x{body.id:08X}",
         "quantum": quantum,
         "cell": format_cell_id(body.position.objcell_id),
         "origin": list(frame.origin),
-        "orientation": [frame.qw, frame.qx, frame.qy, frame.qz],
+        "orientation": orientation,
+        "heading": heading_of(orientation),
         "velocity": list(body.velocity),
         "cached_velocity": list(body.cached_velocity),
         "omega": list(body.omega),
         "transient": flag_names(body.transient_state, TransientState),
         "contact_normal": list(body.contact_plane.N) if in_contact else None,
-        "events": list(body.step_events),
+        "motion": motion_record(
+            body,
+            node.animation.name if playing else None,  # type: ignore[union-attr]
+            sequence.frame_number if playing else None,  # type: ignore[union-attr]
+        ),
+        "events": list(body.step_events) if quantum else [],
+    }
+
+
+def heading_of(orientation: list[float]) -> float:
+    """The compass heading in degrees [0, 360) of a record's ``orientation`` ``[w, x, y, z]``:
+    retail's ``Frame::get_heading`` of the matrix the quaternion caches."""
+    return Frame(None, *orientation).get_heading()
+
+
+def motion_record(body: PhysicsObj, animation: str | None, frame: float | None) -> dict[str, Any] | None:
+    """A record's ``motion``: the interpreted motion state (style, forward, sidestep and turn
+    commands by name with their speeds; null commands for none) and the raw state's hold key,
+    when the body has a motion interpreter, and the ``animation`` playing (the current node's,
+    by name) at ``frame``; None for a body with neither."""
+    if body.part_array is None:
+        return None
+    manager = body.movement_manager
+    interp = manager.motion_interpreter if manager is not None else None
+    if interp is None:
+        if animation is None:
+            return None
+        motion: dict[str, Any] = dict.fromkeys(MOTION_KEYS)
+    else:
+        state = interp.interpreted_state
+        motion = {
+            "style": motion_name(state.current_style),
+            "forward": motion_name(state.forward_command),
+            "forward_speed": state.forward_speed,
+            "sidestep": motion_name(state.sidestep_command) if state.sidestep_command else None,
+            "sidestep_speed": state.sidestep_speed,
+            "turn": motion_name(state.turn_command) if state.turn_command else None,
+            "turn_speed": state.turn_speed,
+            "hold_key": HoldKey(interp.raw_state.current_holdkey).name.lower(),
+        }
+    motion["animation"] = animation
+    motion["frame"] = frame
+    return motion
+
+
+def trace_schema() -> dict[str, Any]:
+    """The JSON Schema (draft 2020-12) of one line of a trace, as shipped in the package
+    (``acphys/data/trace.schema.json``; ``acphys schema trace`` prints it)."""
+    text = resources.files("acphys.data").joinpath("trace.schema.json").read_text("utf-8")
+    return json.loads(text)
+
+
+def trace_header(
+    scenario: str, sha256: str | None, driver_hz: float, engine: str
+) -> dict[str, Any]:
+    """The first record of a v2 trace: what wrote it and from what."""
+    from acphys import __version__
+
+    return {
+        "schema": SCHEMA,
+        "acphys": __version__,
+        "engine": engine,
+        "driver_hz": driver_hz,
+        "scenario": {"name": scenario, "sha256": sha256},
     }
 
 
 class TraceWriter:
     """Writes a record for every step of the bodies it is attached to."""
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, header: dict[str, Any] | None = None) -> None:
+        """A writer of the trace at ``path``; ``header`` (:func:`trace_header`) is its first line."""
         self.path = Path(path)
+        self.header = header
         self._file: TextIO | None = None
         self.records = 0
 
@@ -112,6 +213,9 @@ class TraceWriter:
             raise TraceError(f"{label}: cannot write: a named pipe that no process reads") from None
         os.set_blocking(descriptor, True)
         self._file = os.fdopen(descriptor, "w", encoding="utf-8")
+        if self.header is not None:
+            self._file.write(json.dumps(self.header, allow_nan=False))
+            self._file.write("\n")
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -130,6 +234,11 @@ class TraceWriter:
 
     def write_step(self, body: PhysicsObj, quantum: float) -> None:
         self.write_record(step_record(body, quantum))
+
+    def write_start(self, bodies: Iterable[PhysicsObj]) -> None:
+        """A record of each of ``bodies`` as it stands (``quantum`` 0), before a run's first step."""
+        for body in bodies:
+            self.write_record(step_record(body, 0.0))
 
     def write_record(self, record: dict[str, Any]) -> None:
         """Write one record (a :func:`step_record`, or the fast engine's equivalent)."""
@@ -288,111 +397,3 @@ def brief(value: Any, limit: int = 80) -> str:
     """The ``repr`` of ``value`` for a message: cut to ``limit`` characters."""
     text = repr(value)
     return text if len(text) <= limit else f"{text[: limit - 3]}..."
-
-
-@dataclass
-class Divergence:
-    """Where two traces first differ."""
-
-    line: int
-    t: float | None
-    body: str | None
-    field: str
-    a: Any
-    b: Any
-    difference: float | None = None
-
-    def describe(self) -> str:
-        where = f"line {self.line}"
-        if _is_number(self.t):
-            where += f", t={self.t:.6g}"
-        elif self.t is not None:
-            where += f", t={self.t!r}"
-        if self.body is not None:
-            where += f", body {self.body!r}"
-        text = f"first divergence at {where}: {self.field}: {self.a!r} vs {self.b!r}"
-        if self.difference is not None:
-            text += f" (differs by {self.difference:.6g})"
-        return text
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _first_difference(field: str, a: Any, b: Any, tol: float) -> Divergence | None:
-    """Where ``a`` and ``b`` first differ beyond ``tol`` (the record fields are left unset).
-
-    NaN equals NaN and infinity itself, so a trace never diverges from itself;
-    -0.0 equals 0.0 (they differ by nothing).
-    """
-    if _is_number(a) and _is_number(b):
-        if a == b or (a != a and b != b):
-            return None
-        difference = abs(a - b)
-        if math.isnan(difference):
-            return Divergence(0, None, None, field, a, b)
-        return Divergence(0, None, None, field, a, b, difference) if difference > tol else None
-    numeric_list = isinstance(a, list) and isinstance(b, list) and field not in ("transient", "events")
-    if numeric_list and len(a) == len(b):
-        for index, (x, y) in enumerate(zip(a, b, strict=True)):
-            found = _first_difference(f"{field}[{index}]", x, y, tol)
-            if found is not None:
-                return found
-        return None
-    return None if _same(a, b) else Divergence(0, None, None, field, a, b)
-
-
-def _same(a: Any, b: Any) -> bool:
-    """Whether two JSON values are equal, a boolean never equal to a number and NaN equal to NaN."""
-    if isinstance(a, list) and isinstance(b, list):
-        return len(a) == len(b) and all(map(_same, a, b))
-    if isinstance(a, dict) and isinstance(b, dict):
-        return a.keys() == b.keys() and all(_same(a[key], b[key]) for key in a)
-    if isinstance(a, bool) or isinstance(b, bool):
-        return type(a) is type(b) and a == b
-    return a == b or (isinstance(a, float) and isinstance(b, float) and a != a and b != b)
-
-
-def diff_traces(path_a: str | Path, path_b: str | Path, tol: float = 1e-6) -> Divergence | None:
-    """The first record and field where two traces differ by more than ``tol``, or None.
-
-    Records are compared in order; numbers (and numeric list elements) by
-    absolute difference, everything else exactly; NaN equals NaN in the same
-    field and -0.0 equals 0.0. A trace that ends early diverges at the first
-    record the other has and it lacks. Both files stream through.
-    """
-    if not tol >= 0.0:
-        raise ValueError(f"tolerance must be a non-negative number, got {tol}")
-    records_a = read_trace(path_a)
-    records_b = read_trace(path_b)
-    record_index = 0
-    while True:
-        item_a = next(records_a, None)
-        item_b = next(records_b, None)
-        record_index += 1
-        if item_a is None and item_b is None:
-            return None
-        if item_a is None or item_b is None:
-            line, record = item_b if item_a is None else item_a  # type: ignore[misc]
-            return Divergence(
-                line=line,
-                t=record.get("t"),
-                body=record.get("body"),
-                field="record",
-                a="<end of trace>" if item_a is None else f"record {record_index}",
-                b="<end of trace>" if item_b is None else f"record {record_index}",
-            )
-        line, a = item_a
-        _, b = item_b
-        for key in sorted(a.keys() | b.keys(), key=_key_order):
-            if key not in a or key not in b:
-                return Divergence(line, a.get("t"), a.get("body"), key, a.get(key), b.get(key))
-            found = _first_difference(key, a[key], b[key], tol)
-            if found is not None:
-                found.line, found.t, found.body = line, a.get("t"), a.get("body")
-                return found
-
-
-def _key_order(key: str) -> tuple[int, str]:
-    return (RECORD_KEYS.index(key) if key in RECORD_KEYS else len(RECORD_KEYS), key)

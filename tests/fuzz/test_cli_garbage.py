@@ -218,9 +218,10 @@ def test_garbage_is_one_error_line_and_exit_2(case: str, runs: Runs) -> None:
     assert done.code is not None, f"{case}: still running after {TIME_LIMIT:g} s (killed)"
     if case in EMPTY_TRACE_DIFFS:
         # Not garbage to diff: an empty trace is one that ends at once, and diverges from a real
-        # one at its first record (tests/unit/test_trace.py), exit 1 with the divergence on stdout.
+        # one at its first record (tests/unit/test_trace.py), exit 1 with the divergence on stdout
+        # (line 2: the real trace's first line is its header).
         assert (done.code, done.stderr) == (1, ""), f"{case}: exit {done.code}: {done.stderr}"
-        assert done.stdout.startswith("first divergence at line 1, "), done.stdout
+        assert done.stdout.startswith("first divergence at line 2, "), done.stdout
         return
     lines = done.stderr.splitlines()
     assert done.code == 2, f"{case}: exit {done.code}: {done.stderr}"

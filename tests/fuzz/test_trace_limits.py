@@ -24,7 +24,8 @@ from typing import Any
 import pytest
 
 from acphys.plot import MAX_MAGNITUDE, PathCollector, Points, make_figure, read_paths
-from acphys.trace import MAX_DEPTH, MAX_INT_DIGITS, MAX_LINE_BYTES, _first_difference, _same
+from acphys.trace import MAX_DEPTH, MAX_INT_DIGITS, MAX_LINE_BYTES
+from acphys.trace_diff import _first_difference, _same
 
 #: The memory a command may use, and the seconds it may take: the issue's bounds.
 MEMORY_LIMIT = 1 << 30
@@ -257,7 +258,7 @@ def test_diff_takes_nan_as_nan_and_a_number_against_nan_as_a_divergence(tmp_path
     same = acphys("diff", nan, nan, cwd=tmp_path)
     assert (same.code, same.out, same.err) == (0, "identical within 1e-06\n", "")
     for a, b, shown in ((nan, number, "nan vs 0.5"), (number, nan, "0.5 vs nan")):
-        run = acphys("diff", a, b, cwd=tmp_path)
+        run = acphys("diff", a, b, "--context", "0", cwd=tmp_path)
         assert (run.code, run.err) == (1, "")
         assert run.out == f"first divergence at line 2, t=0.2, body 'ball': velocity[1]: {shown}\n"
 
@@ -294,9 +295,12 @@ def test_a_name_holding_a_newline_is_shown_escaped_and_messages_stay_one_line(tm
     missing = acphys("view", trace, "--bodies", "nobody", cwd=tmp_path)
     one_error_line(missing, "no body named 'nobody' in the trace (it has: two\\nlines)")
     other = write_trace(tmp_path / "other.jsonl", record(body=name), record(t=0.2, body="one"))
-    diff = acphys("diff", trace, other, cwd=tmp_path)
+    diff = acphys("diff", trace, other, "--context", "0", cwd=tmp_path)
     assert (diff.code, diff.err) == (1, "")
-    assert diff.out == "first divergence at line 2, t=0.2, body 'two\\nlines': body: 'two\\nlines' vs 'one'\n"
+    # Records pair per body: the second record of 'two\nlines' has none to pair with in the other.
+    expected = "first divergence at line 2, t=0.2, body 'two\\nlines': record: 'record 2' vs '<end of trace>'"
+    expected += "\n"
+    assert diff.out == expected
 
 
 # -- long traces: bounded memory and time --------------------------------------------------------

@@ -15,8 +15,7 @@ import pytest
 import acphys
 from acphys.constants import DEFAULT_ELASTICITY, EPSILON, GRAVITY, SMALL_VELOCITY
 from acphys.precision import f32
-from acphys.trace import read_trace
-from support import fall, ulp32
+from support import fall, step_records, ulp32
 
 REST = 10.0  # seconds of rest the rung asks for
 
@@ -27,7 +26,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[dict[str, 
     trace = Path(tmp_path_factory.mktemp("ladder01")) / "fall.jsonl"
     sim.run(trace=trace)
     by_body: dict[str, list[dict[str, Any]]] = {}
-    for _, record in read_trace(trace):
+    for record in step_records(trace):
         by_body.setdefault(record["body"], []).append(record)
     return by_body
 

@@ -15,8 +15,7 @@ import pytest
 import acphys
 from acphys.constants import FLOOR_Z, GRAVITY
 from acphys.precision import f32
-from acphys.trace import read_trace
-from support import UNIT_TOL, ulp32, walk_tolerance
+from support import UNIT_TOL, step_records, ulp32, walk_tolerance
 
 GENTLE, STEEP = 1.12, 1.13
 
@@ -33,7 +32,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[dict[str, 
     trace = Path(tmp_path_factory.mktemp("ladder02")) / "slopes.jsonl"
     sim.run(trace=trace)
     by_body: dict[str, list[dict[str, Any]]] = {}
-    for _, record in read_trace(trace):
+    for record in step_records(trace):
         by_body.setdefault(record["body"], []).append(record)
     return by_body
 

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import json
 import math
 
 import acphys
 from acphys.flags import TransientState
 from acphys.precision import f32
-from support import walk_tolerance
+from support import step_records, walk_tolerance
 
 # The built-in walk: 3.12 m/s of root motion at 30 frames a second, one frame per 30-Hz step
 # (CMotionInterp::get_state_velocity, acclient.c:343538).
@@ -48,7 +47,7 @@ def test_head_on_walker_stops_at_its_last_clear_step(tmp_path):
     assert walker.transient_state & TransientState.ON_WALKABLE
     # The wall is static: FindObjCollisions (acclient.c:316158) records no object collision
     # for it, so no report is made.
-    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    records = step_records(trace)
     events = [event for record in records if record["body"] == "walker" for event in record["events"]]
     assert not any(event.startswith("collision:wall") for event in events)
 

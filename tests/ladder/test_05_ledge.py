@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import math
 
 import acphys
 from acphys.flags import PhysicsState, TransientState
 from acphys.math.vector import Vector3
 from acphys.precision import f32
-from support import walk_tolerance
+from support import step_records, walk_tolerance
 
 STEP = 3.12 / 30.0  # walk root motion per 30-Hz step (CMotionInterp::get_state_velocity, acclient.c:343538)
 EDGE_Y = 98.0
@@ -21,7 +20,7 @@ def _records(tmp_path, body: str) -> tuple[acphys.Simulation, list[dict]]:
     sim = acphys.load_scenario("ladder-05-ledge")
     trace = tmp_path / "ledge.jsonl"
     sim.run(trace=trace)
-    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    records = step_records(trace)
     return sim, [record for record in records if record["body"] == body]
 
 

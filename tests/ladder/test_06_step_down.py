@@ -15,8 +15,7 @@ import pytest
 
 import acphys
 from acphys.precision import f32
-from acphys.trace import read_trace
-from support import UNIT_TOL, ulp32
+from support import UNIT_TOL, step_records, ulp32
 
 STAIR_TOPS = [1.2, 0.9, 0.6, 0.3, 0.0]  # box tops above the 50-m ground
 OFFSET = 0.005  # sphere 0 (r 0.48 at z 0.475): its low point is 0.005 below the origin
@@ -29,7 +28,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[dict[str, 
     trace = Path(tmp_path_factory.mktemp("ladder06")) / "step_down.jsonl"
     sim.run(trace=trace)
     by_body: dict[str, list[dict[str, Any]]] = {}
-    for _, record in read_trace(trace):
+    for record in step_records(trace):
         by_body.setdefault(record["body"], []).append(record)
     return by_body
 

@@ -7,7 +7,6 @@ The expected values are worked out by hand from the retail steps (30 Hz, dt = f3
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
@@ -16,7 +15,7 @@ import acphys
 from acphys.constants import GRAVITY
 from acphys.flags import PhysicsState
 from acphys.precision import f32
-from support import fall, walk_tolerance
+from support import fall, step_records, walk_tolerance
 
 DT = f32(1.0 / 30.0)
 G = GRAVITY
@@ -27,8 +26,7 @@ def _records(tmp_path: Path) -> dict[str, list[dict]]:
     trace = tmp_path / "bounce.jsonl"
     sim.run(trace=trace)
     by_body: dict[str, list[dict]] = {}
-    for line in trace.read_text().splitlines():
-        record = json.loads(line)
+    for record in step_records(trace):
         by_body.setdefault(record["body"], []).append(record)
     return by_body
 
@@ -96,7 +94,7 @@ def test_the_inelastic_missile_stops_dead_at_the_wall(tmp_path: Path) -> None:
     sim = acphys.load_scenario("ladder-07-bounce")
     trace = tmp_path / "missile.jsonl"
     sim.run(trace=trace)
-    missile = [r for r in map(json.loads, trace.read_text().splitlines()) if r["body"] == "missile"]
+    missile = [r for r in step_records(trace) if r["body"] == "missile"]
     hits = [i + 1 for i, r in enumerate(missile) if r["events"]]
     # 10 m/s moves 1/3 m a step from x = 100; the wall's west face is at 110 - 0.25 = 109.75.
     # Step 29 starts at 100 + 28/3 = 109.3333 and is swept in ceil((1/3) / 0.1) = 4 sub-steps

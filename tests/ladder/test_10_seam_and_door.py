@@ -10,13 +10,12 @@ origin, so its centre has the origin's x and y.
 from __future__ import annotations
 
 import itertools
-import json
 
 import pytest
 
 import acphys
 from acphys.precision import f32
-from support import ulp32
+from support import step_records, ulp32
 
 ROOM = 0xAAB40100
 WEST, EAST = 0xA9B4, 0xAAB4
@@ -33,7 +32,7 @@ def records(tmp_path_factory: pytest.TempPathFactory) -> list[dict]:
     sim = acphys.load_scenario("ladder-10-seam-and-door")
     trace = tmp_path_factory.mktemp("ladder10") / "walk.jsonl"
     sim.run(trace=trace)
-    return [json.loads(line) for line in trace.read_text().splitlines()]
+    return step_records(trace)
 
 
 def test_the_cell_id_follows_the_body(records: list[dict]) -> None:

@@ -11,8 +11,7 @@ import pytest
 import acphys
 from acphys.constants import GRAVITY
 from acphys.precision import f32
-from acphys.trace import read_trace
-from support import ulp32
+from support import step_records, ulp32
 
 STATIONARY = {"stationary_fall", "stationary_stop", "stationary_stuck"}
 
@@ -22,7 +21,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[acphys.Simulation, li
     sim = acphys.load_scenario("ladder-11-pit")
     trace = Path(tmp_path_factory.mktemp("ladder11")) / "pit.jsonl"
     sim.run(trace=trace)
-    return sim, [record for _, record in read_trace(trace)]
+    return sim, step_records(trace)
 
 
 def test_stationary_fall_sequence(run: tuple[acphys.Simulation, list[dict[str, Any]]]) -> None:

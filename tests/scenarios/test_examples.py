@@ -14,7 +14,6 @@ are compared within the drift of their stores (support.walk_tolerance).
 from __future__ import annotations
 
 import itertools
-import json
 import math
 import tomllib
 from collections.abc import Callable
@@ -29,7 +28,7 @@ from acphys.math.vector import Vector3
 from acphys.precision import f32
 from acphys.scenario import builtin_scenario_text
 from acphys.world.terrain import WaterType
-from support import fall, ulp32, walk_tolerance
+from support import fall, step_records, ulp32, walk_tolerance
 
 STEP = 3.12 / 30.0  # one walk frame a 30-Hz step
 RUN_STEP = 4.0 / 30.0  # one run frame (RunForward, 4 m/s) a step
@@ -42,8 +41,7 @@ Records = dict[str, list[dict[str, Any]]]
 
 def _read(path: Path) -> Records:
     records: Records = {}
-    for line in path.read_text(encoding="utf-8").splitlines():
-        record = json.loads(line)
+    for record in step_records(path):
         records.setdefault(record["body"], []).append(record)
     return records
 

@@ -85,8 +85,9 @@ def test_run_writes_the_trace(tmp_path: Path, capsys: pytest.CaptureFixture[str]
     assert code == 0, err
     assert "0.5 s simulated" in one_line(out)
     assert "trace:" in out
-    records = [json.loads(line) for line in path.read_text(encoding="utf-8").splitlines()]
-    assert len(records) == 105  # 7 bodies x 15 steps at 30 Hz
+    header, *records = [json.loads(line) for line in path.read_text(encoding="utf-8").splitlines()]
+    assert header["schema"] == "acphys.trace/2" and header["scenario"]["name"] == "default"
+    assert len(records) == 7 + 105  # where the 7 bodies start, then 15 steps each at 30 Hz
     assert {record["body"] for record in records} == set(DEFAULT_BODIES)
 
 
@@ -283,7 +284,7 @@ def test_the_module_entry_point_checks_and_fails_in_one_line(tmp_path: Path) -> 
 def test_the_module_entry_point_runs_and_diffs(tmp_path: Path) -> None:
     done = _command("run", "--trace", "a.jsonl", "--until", "0.5", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
-    assert len((tmp_path / "a.jsonl").read_text(encoding="utf-8").splitlines()) == 105
+    assert len((tmp_path / "a.jsonl").read_text(encoding="utf-8").splitlines()) == 1 + 7 + 105
     shutil.copyfile(tmp_path / "a.jsonl", tmp_path / "b.jsonl")
     done = _command("diff", "a.jsonl", "b.jsonl", cwd=tmp_path)
     assert done.returncode == 0, done.stderr

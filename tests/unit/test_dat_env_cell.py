@@ -4,7 +4,6 @@ cell, physics and drawing trees (``BSPNODE::UnPack`` and friends by ``pack_tree_
 
 from __future__ import annotations
 
-import json
 import struct
 from pathlib import Path
 
@@ -40,6 +39,7 @@ from dat_support import (
     stab_bytes,
 )
 from dat_support import CELL as CELL_DATA
+from support import step_records
 
 CELL = 0xA9B40100
 
@@ -303,7 +303,7 @@ def test_a_cell_dat_building_loads_its_room_and_door(room_dats: Path) -> None:
     assert [obj.name for obj in room.objects] == ["0x02000010@0xA9B40100#0"]
     trace = room_dats / "walk.jsonl"
     sim.run(trace=trace)
-    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    records = step_records(trace)
     visited: list[int] = []
     for record in records:
         cell = int(record["cell"], 16)

@@ -7,7 +7,6 @@ the reader.
 from __future__ import annotations
 
 import itertools
-import json
 import struct
 from pathlib import Path
 
@@ -33,6 +32,7 @@ from acphys.motion import anim_hooks as hooks
 from acphys.motion import commands as cmd
 from acphys.motion.animation import Animation
 from acphys.motion.motion_table import CLEARS_MODIFIERS, cycle_key
+from support import step_records
 
 TABLE_ID = 0x09000001  # the id setup_record names as default_mtable_id
 READY_ANIM = 0x03000010
@@ -269,7 +269,7 @@ def load(folder: Path, text: str) -> acphys.Simulation:
 
 def walked_steps(sim: acphys.Simulation, trace: Path) -> list[float]:
     sim.run(until=2.5, trace=trace)
-    ys = [json.loads(line)["origin"][1] for line in trace.read_text().splitlines()]
+    ys = [record["origin"][1] for record in step_records(trace)]
     return [(b - a) / f32(STEP) for a, b in itertools.pairwise(ys)]
 
 

@@ -4,7 +4,6 @@ built-in "remote" scenario, and the order in which the tick runs the managers.""
 from __future__ import annotations
 
 import itertools
-import json
 from pathlib import Path
 
 import pytest
@@ -28,7 +27,7 @@ from acphys.scenario import ScenarioError, parse_scenario
 from acphys.scenario.motion_tables import builtin_motion_table
 from acphys.setup import human_setup
 from acphys.world.world import World
-from support import LANDBLOCK, ulp32
+from support import LANDBLOCK, step_records, ulp32
 
 GLIDE = 8.0 / 30.0  # 2 × adjusted max speed (4 m/s, no weenie) per 1/30-s step (acclient.c:389237-389240)
 
@@ -39,8 +38,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> tuple[acphys.Simulation, di
     trace = tmp_path_factory.mktemp("remote") / "remote.jsonl"
     sim.run(trace=trace)
     records: dict[str, list[dict]] = {}
-    for line in Path(trace).read_text(encoding="utf-8").splitlines():
-        record = json.loads(line)
+    for record in step_records(Path(trace)):
         records.setdefault(record["body"], []).append(record)
     return sim, records
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import itertools
-import json
 import math
 from pathlib import Path
 
@@ -17,7 +16,7 @@ from acphys.motion.motion_table import DEFAULT_SUBSTATE_ONLY, cycle_key
 from acphys.precision import f32
 from acphys.scenario import ScenarioError, parse_scenario
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables
-from support import ulp32, walk_tolerance
+from support import step_records, ulp32, walk_tolerance
 
 RUNNER = """
 [scenario]
@@ -121,7 +120,7 @@ class TestMotionTableFromAScenario:
         )
         trace = tmp_path / "run.jsonl"
         sim.run(trace=trace)
-        records = [json.loads(line) for line in trace.read_text().splitlines()]
+        records = step_records(trace)
         # enter_world's SetPosition commits the placement on the ground: set_on_walkable reports
         # hit_ground and handle_all_collisions the environment (acclient.c:323369); then the motion.
         assert records[0]["events"] == ["hit_ground", "collision:environment", "motion:RunForward"]
@@ -143,7 +142,7 @@ class TestMotionTableFromAScenario:
         sim = parse_scenario(airborne + '\n[[event]]\nat = 0.1\nbody = "runner"\naction = "jump"\n')
         trace = tmp_path / "jump.jsonl"
         sim.run(until=0.3, trace=trace)
-        events = [e for line in trace.read_text().splitlines() for e in json.loads(line)["events"]]
+        events = [e for record in step_records(trace) for e in record["events"]]
         # An airborne gravity creature cannot jump: 0x24 (CMotionInterp::jump_is_allowed, acclient.c:343921).
         assert "jump:error:0x24" in events
 
@@ -195,7 +194,7 @@ class TestTheDefaultScenario:
     def test_the_walker_and_the_runner_step_one_animation_frame_at_a_time(self, tmp_path: Path) -> None:
         trace = tmp_path / "default.jsonl"
         acphys.load_scenario().run(until=2.5, trace=trace)
-        records = [json.loads(line) for line in trace.read_text().splitlines()]
+        records = step_records(trace)
         for name, speed in (("walker", float(WALK_ANIM_SPEED)), ("runner", RUN_ANIM_SPEED)):
             ys = [record["origin"][1] for record in records if record["body"] == name]
             frame = speed / 30.0

@@ -7,13 +7,13 @@ lets go at 2 s (unset_parent @ 0x00513470, 320479); a set_velocity at 2.05 s tos
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
 
 import acphys
 from acphys.precision import f32
+from support import step_records
 
 HAND = (0.7, 0.3, 1.1)
 
@@ -23,8 +23,7 @@ def records(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[dict]]:
     trace = tmp_path_factory.mktemp("carry") / "carry.jsonl"
     acphys.load_scenario("carry").run(trace=trace)
     result: dict[str, list[dict]] = {}
-    for line in Path(trace).read_text(encoding="utf-8").splitlines():
-        record = json.loads(line)
+    for record in step_records(Path(trace)):
         result.setdefault(record["body"], []).append(record)
     return result
 
@@ -105,7 +104,7 @@ target = "b"
     sim = acphys.parse_scenario(text, source="cycle.toml")
     sim.run(trace=trace)
     events = [
-        e for line in trace.read_text(encoding="utf-8").splitlines() for e in json.loads(line)["events"]
+        e for record in step_records(trace) for e in record["events"]
     ]
     assert "set_parent:b:cycle" in events
     assert sim.body("b").parent is sim.body("a") and sim.body("a").parent is None

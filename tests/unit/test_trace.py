@@ -5,6 +5,7 @@ Every test runs the real simulation; no part of acphys is mocked.
 
 from __future__ import annotations
 
+import hashlib
 import itertools
 import json
 import math
@@ -17,9 +18,19 @@ from typing import Any
 import pytest
 
 import acphys
+import acphys.scenario
+from acphys.cli import main
 from acphys.flags import TransientState
-from acphys.trace import RECORD_KEYS, Divergence, TraceError, diff_traces, read_trace
-from support import UNIT_TOL
+from acphys.trace import (
+    MOTION_KEYS,
+    RECORD_KEYS,
+    SCHEMA,
+    TraceError,
+    read_header,
+    read_trace,
+)
+from acphys.trace_diff import Divergence, diff_traces
+from support import UNIT_TOL, step_records
 
 #: The bodies of the built-in default scenario, in file order.
 DEFAULT_BODIES = ("skydiver", "ball", "spinner", "drifter", "sitter", "walker", "runner")
@@ -52,9 +63,19 @@ def default_trace(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return path
 
 
+@pytest.fixture(scope="module")
+def steps_trace(default_trace: Path) -> Path:
+    """The step records of ``default_trace``, byte for byte, without its header and start records."""
+    lines = default_trace.read_text(encoding="utf-8").splitlines(keepends=True)
+    path = default_trace.with_name("steps.jsonl")
+    path.write_text("".join(lines[1 + len(DEFAULT_BODIES) :]), encoding="utf-8")
+    return path
+
+
 @pytest.fixture
-def records(default_trace: Path) -> list[dict[str, Any]]:
-    return read_records(default_trace)
+def records(steps_trace: Path) -> list[dict[str, Any]]:
+    """The step records of the default scenario's first half second."""
+    return read_records(steps_trace)
 
 
 def by_body(records: list[dict[str, Any]]) -> dict[str, list[dict[str, Any]]]:
@@ -90,7 +111,9 @@ def test_every_record_has_exactly_the_record_keys_in_order(records: list[dict[st
 def test_every_line_is_strict_json_with_finite_numbers(default_trace: Path) -> None:
     text = default_trace.read_text(encoding="utf-8")
     assert text.endswith("\n")
-    for number, line in enumerate(text.splitlines(), start=1):
+    header, *lines = text.splitlines()
+    assert json.loads(header, parse_constant=_refuse_constant)["schema"] == SCHEMA
+    for number, line in enumerate(lines, start=2):
         record = json.loads(line, parse_constant=_refuse_constant)
         assert isinstance(record, dict), f"line {number}"
         numbers = [record["t"], record["quantum"]]
@@ -171,7 +194,7 @@ def test_omega_is_written_in_radians_per_second(records: list[dict[str, Any]]) -
 def test_last_record_of_each_body_is_its_state_after_the_run(tmp_path: Path) -> None:
     sim = acphys.load_scenario()
     sim.run(until=0.5, trace=tmp_path / "t.jsonl")
-    last = {record["body"]: record for record in read_records(tmp_path / "t.jsonl")}
+    last = {record["body"]: record for _, record in read_trace(tmp_path / "t.jsonl")}
     assert set(last) == set(DEFAULT_BODIES)
     for body in sim.bodies:
         record = last[body.name]
@@ -213,7 +236,7 @@ origin = [100.0, 96.0, 50.0]
 """
     sim = acphys.parse_scenario(text, source="two.toml")
     sim.run(until=1.0, trace=tmp_path / "t.jsonl")
-    grouped = by_body(read_records(tmp_path / "t.jsonl"))
+    grouped = by_body(step_records(tmp_path / "t.jsonl"))
     assert set(grouped) == {"a", "b"}
     for body_records in grouped.values():
         quanta = [record["quantum"] for record in body_records]
@@ -221,20 +244,106 @@ origin = [100.0, 96.0, 50.0]
         assert [record["t"] for record in body_records] == pytest.approx([0.2, 0.4, 0.5, 0.7, 0.9, 1.0])
 
 
+# -- schema v2: the header, where the run starts, who and how it moves ----------------------------
+
+
+def test_the_first_line_is_a_header_naming_schema_version_engine_and_scenario(default_trace: Path) -> None:
+    header = json.loads(default_trace.read_text(encoding="utf-8").splitlines()[0])
+    text = acphys.scenario.builtin_scenario_text("default").encode("utf-8")
+    assert header == {
+        "schema": "acphys.trace/2",
+        "acphys": acphys.__version__,
+        "engine": "reference",
+        "driver_hz": 60.0,
+        "scenario": {"name": "default", "sha256": hashlib.sha256(text).hexdigest()},
+    }
+    assert read_header(default_trace) == header
+    assert next(line for line, _ in read_trace(default_trace)) == 2  # the reader skips the header
+
+
+def test_each_body_has_a_record_where_the_run_starts(default_trace: Path) -> None:
+    start = [record for _, record in itertools.islice(read_trace(default_trace), len(DEFAULT_BODIES))]
+    # In the order the steps run them (the object table's: ids from 0x80000001 in file order).
+    assert [record["body"] for record in start] == list(DEFAULT_BODIES)
+    assert [record["id"] for record in start] == [f"0x{0x80000001 + k:08X}" for k in range(7)]
+    for record in start:
+        assert (record["t"], record["quantum"], record["events"]) == (0.0, 0.0, []), record["body"]
+        assert list(record) == list(RECORD_KEYS)
+    assert start[0]["origin"] == [96.0, 96.0, 400.0]  # the skydiver, where the scenario puts it
+    assert start[0]["velocity"] == [0.0, 0.0, 0.0]
+
+
+def test_heading_is_the_compass_heading_of_the_orientation(records: list[dict[str, Any]]) -> None:
+    grouped = by_body(records)
+    # The drifter faces east (heading = 90): the float32 quaternion (cos 45°, 0, 0, -sin 45°)
+    # gives Frame::get_heading (acclient.c:357409) 90 to within its rounding.
+    assert all(r["heading"] == pytest.approx(90.0, abs=1e-5) for r in grouped["drifter"])
+    # The spinner turns 90°/s anticlockwise about z: 3° a step, the compass heading falling from
+    # 360: 357 after the first step, 315 after fifteen.
+    spinner = [r["heading"] for r in grouped["spinner"]]
+    assert spinner[0] == pytest.approx(357.0, abs=1e-5)
+    assert spinner[14] == pytest.approx(315.0, abs=1e-4)
+
+
+def test_motion_is_the_interpreted_state_and_the_animation_playing(records: list[dict[str, Any]]) -> None:
+    grouped = by_body(records)
+    assert all(r["motion"] is None for name in ("ball", "spinner", "drifter") for r in grouped[name])
+    walker, runner = grouped["walker"], grouped["runner"]
+    for record in [*walker, *runner]:
+        assert list(record["motion"]) == list(MOTION_KEYS)
+    # Standing until the 0.5-s event: Ready, the motion table's first cycle.
+    assert walker[0]["motion"]["forward"] == "Ready" and walker[0]["motion"]["hold_key"] == "none"
+    assert walker[0]["motion"]["animation"] == "motion_table.cycle[0]"
+    # The event's tick: WalkForward; with the run key held the interpreter makes it RunForward
+    # (CMotionInterp::adjust_motion), and each starts on its link animation.
+    assert walker[-1]["motion"]["forward"] == "WalkForward"
+    assert (runner[-1]["motion"]["forward"], runner[-1]["motion"]["hold_key"]) == ("RunForward", "run")
+    assert walker[-1]["motion"]["animation"] == "motion_table.link[0]"
+    assert runner[-1]["motion"]["animation"] == "motion_table.link[2]"
+    assert walker[-1]["motion"]["turn"] is None and walker[-1]["motion"]["sidestep"] is None
+
+
+def test_a_v1_trace_without_header_or_start_records_still_reads(
+    records: list[dict[str, Any]], tmp_path: Path
+) -> None:
+    old = [{k: v for k, v in r.items() if k not in ("id", "heading", "motion")} for r in records]
+    path = write_records(tmp_path / "v1.jsonl", old)
+    assert read_header(path) is None
+    assert [record for _, record in read_trace(path)] == old
+
+
+def test_a_v1_trace_plots_and_views(
+    records: list[dict[str, Any]], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    old = [{k: v for k, v in r.items() if k not in ("id", "heading", "motion")} for r in records]
+    path = write_records(tmp_path / "v1.jsonl", old)
+    assert main(["view", str(path), "--bodies", "drifter"]) == 0
+    assert "drifter" in capsys.readouterr().out
+    assert main(["plot", str(path), "-o", str(tmp_path / "v1.png")]) == 0
+    assert (tmp_path / "v1.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_header_of_an_unknown_schema_is_refused(tmp_path: Path) -> None:
+    path = tmp_path / "future.jsonl"
+    path.write_text('{"schema": "acphys.trace/9"}\n', encoding="utf-8")
+    with pytest.raises(TraceError, match=r"future.jsonl:1: unknown trace schema 'acphys.trace/9'"):
+        list(read_trace(path))
+
+
 # -- diff_traces --------------------------------------------------------------------------------
 
 
-def test_identical_traces_do_not_diverge(default_trace: Path, tmp_path: Path) -> None:
+def test_identical_traces_do_not_diverge(steps_trace: Path, tmp_path: Path) -> None:
     copy = tmp_path / "copy.jsonl"
-    shutil.copyfile(default_trace, copy)
-    assert diff_traces(default_trace, default_trace) is None
-    assert diff_traces(default_trace, copy, tol=0.0) is None
+    shutil.copyfile(steps_trace, copy)
+    assert diff_traces(steps_trace, steps_trace) is None
+    assert diff_traces(steps_trace, copy, tol=0.0) is None
 
 
-def test_two_runs_of_the_default_scenario_are_identical(default_trace: Path, tmp_path: Path) -> None:
+def test_two_runs_of_the_default_scenario_are_identical(steps_trace: Path, tmp_path: Path) -> None:
     again = tmp_path / "again.jsonl"
     acphys.load_scenario().run(until=0.5, trace=again)
-    assert diff_traces(default_trace, again, tol=0.0) is None
+    assert diff_traces(steps_trace, again, tol=0.0) is None
 
 
 def _planted(
@@ -247,10 +356,10 @@ def _planted(
 
 @pytest.mark.parametrize("index", [0, 37, 74])
 def test_a_planted_origin_divergence_is_found_at_its_line_and_field(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path, index: int
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path, index: int
 ) -> None:
     changed = write_records(tmp_path / "b.jsonl", _planted(records, index, "origin", 2, 1e-3))
-    found = diff_traces(default_trace, changed, tol=1e-6)
+    found = diff_traces(steps_trace, changed, tol=1e-6)
     assert isinstance(found, Divergence)
     assert found.line == index + 1
     assert found.field == "origin[2]"
@@ -261,48 +370,48 @@ def test_a_planted_origin_divergence_is_found_at_its_line_and_field(
     assert found.difference == pytest.approx(1e-3, rel=1e-6)
     description = found.describe()
     assert f"line {index + 1}" in description and "origin[2]" in description
-    assert diff_traces(default_trace, changed, tol=1e-2) is None
+    assert diff_traces(steps_trace, changed, tol=1e-2) is None
 
 
 def test_the_first_of_two_divergences_is_reported(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     changed = _planted(records, 50, "origin", 0, 1.0)
     changed = _planted(changed, 20, "velocity", 1, 1.0)
-    found = diff_traces(default_trace, write_records(tmp_path / "b.jsonl", changed))
+    found = diff_traces(steps_trace, write_records(tmp_path / "b.jsonl", changed))
     assert found is not None
     assert (found.line, found.field) == (21, "velocity[1]")
 
 
 def test_within_a_record_fields_are_compared_in_record_key_order(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     changed = _planted(records, 10, "omega", 0, 1.0)
     changed = _planted(changed, 10, "origin", 1, 1.0)
-    found = diff_traces(default_trace, write_records(tmp_path / "b.jsonl", changed))
+    found = diff_traces(steps_trace, write_records(tmp_path / "b.jsonl", changed))
     assert found is not None
     assert (found.line, found.field) == (11, "origin[1]")
 
 
 def test_the_tolerance_is_exclusive(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     # 0.5 is exact in binary, and so is the difference 400.0 - 399.5.
     index = 0  # the skydiver at z = 400 on its first step
     assert records[index]["origin"][2] == 400.0
     changed = write_records(tmp_path / "b.jsonl", _planted(records, index, "origin", 2, -0.5))
-    assert diff_traces(default_trace, changed, tol=0.5) is None
-    found = diff_traces(default_trace, changed, tol=0.25)
+    assert diff_traces(steps_trace, changed, tol=0.5) is None
+    found = diff_traces(steps_trace, changed, tol=0.25)
     assert found is not None and found.field == "origin[2]"
 
 
 def test_a_changed_cell_is_reported(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     changed = json.loads(json.dumps(records))
     changed[12]["cell"] = "0xA9B40001"
     assert records[12]["cell"] != "0xA9B40001"
-    found = diff_traces(default_trace, write_records(tmp_path / "b.jsonl", changed), tol=1.0)
+    found = diff_traces(steps_trace, write_records(tmp_path / "b.jsonl", changed), tol=1.0)
     assert found is not None
     assert (found.line, found.field) == (13, "cell")
     assert (found.a, found.b) == (records[12]["cell"], "0xA9B40001")
@@ -310,7 +419,7 @@ def test_a_changed_cell_is_reported(
 
 
 def test_a_boolean_never_equals_a_number(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     # JSON true and 1 are different values, whatever the tolerance.
     first = dict(records[0], quantum=1)
@@ -322,20 +431,20 @@ def test_a_boolean_never_equals_a_number(
 
 
 def test_a_changed_transient_list_is_reported(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     changed = json.loads(json.dumps(records))
     changed[4]["transient"] = [*changed[4]["transient"], "sliding"]
-    found = diff_traces(default_trace, write_records(tmp_path / "b.jsonl", changed), tol=1.0)
+    found = diff_traces(steps_trace, write_records(tmp_path / "b.jsonl", changed), tol=1.0)
     assert found is not None
     assert (found.line, found.field) == (5, "transient")
 
 
 def test_a_truncated_trace_diverges_at_its_first_missing_record(
-    records: list[dict[str, Any]], default_trace: Path, tmp_path: Path
+    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
 ) -> None:
     short = write_records(tmp_path / "short.jsonl", records[:40])
-    found = diff_traces(default_trace, short)
+    found = diff_traces(steps_trace, short)
     assert found is not None
     assert found.line == 41
     assert found.field == "record"
@@ -343,15 +452,15 @@ def test_a_truncated_trace_diverges_at_its_first_missing_record(
     assert found.t == records[40]["t"]
     assert found.b == "<end of trace>"
 
-    reverse = diff_traces(short, default_trace)
+    reverse = diff_traces(short, steps_trace)
     assert reverse is not None
     assert (reverse.line, reverse.field, reverse.a) == (41, "record", "<end of trace>")
 
 
-def test_an_empty_trace_diverges_at_line_one(default_trace: Path, tmp_path: Path) -> None:
+def test_an_empty_trace_diverges_at_line_one(steps_trace: Path, tmp_path: Path) -> None:
     empty = tmp_path / "empty.jsonl"
     empty.write_text("", encoding="utf-8")
-    found = diff_traces(empty, default_trace)
+    found = diff_traces(empty, steps_trace)
     assert found is not None and (found.line, found.field) == (1, "record")
     assert diff_traces(empty, empty) is None
 
@@ -369,7 +478,7 @@ def test_an_empty_trace_diverges_at_line_one(default_trace: Path, tmp_path: Path
 @pytest.mark.parametrize("side", ["a", "b"])
 def test_a_malformed_trace_raises_trace_error_naming_file_and_line(
     records: list[dict[str, Any]],
-    default_trace: Path,
+    steps_trace: Path,
     tmp_path: Path,
     bad_line: str,
     problem: str,
@@ -378,7 +487,7 @@ def test_a_malformed_trace_raises_trace_error_naming_file_and_line(
     bad = tmp_path / "bad.jsonl"
     good_lines = "".join(json.dumps(record) + "\n" for record in records[:3])
     bad.write_text(good_lines + bad_line + "\n", encoding="utf-8")
-    paths = (bad, default_trace) if side == "a" else (default_trace, bad)
+    paths = (bad, steps_trace) if side == "a" else (steps_trace, bad)
     with pytest.raises(TraceError) as caught:
         diff_traces(*paths)
     message = str(caught.value)
@@ -398,16 +507,16 @@ def test_read_trace_yields_line_numbers_and_skips_blank_lines(
     ]
 
 
-def test_a_missing_trace_file_raises_trace_error_naming_it(default_trace: Path, tmp_path: Path) -> None:
+def test_a_missing_trace_file_raises_trace_error_naming_it(steps_trace: Path, tmp_path: Path) -> None:
     missing = tmp_path / "nowhere.jsonl"
     with pytest.raises(TraceError, match=re.escape(str(missing))):
-        diff_traces(default_trace, missing)
+        diff_traces(steps_trace, missing)
 
 
 @pytest.mark.parametrize("tol", [-1e-9, -1.0, math.nan])
-def test_a_negative_tolerance_is_a_value_error(default_trace: Path, tol: float) -> None:
+def test_a_negative_tolerance_is_a_value_error(steps_trace: Path, tol: float) -> None:
     with pytest.raises(ValueError, match="tolerance") as caught:
-        diff_traces(default_trace, default_trace, tol=tol)
+        diff_traces(steps_trace, steps_trace, tol=tol)
     assert not isinstance(caught.value, TraceError)
 
 

@@ -157,7 +157,7 @@ class CellMembership:
             self.enter_cell(new_cell)
         else:
             self.position.objcell_id = 0
-            if self.part_array is not None and not self.state & PS.PARTICLE_EMITTER:
+            if self.part_array is not None and not self._state & PS.PARTICLE_EMITTER:
                 self.part_array.set_cell_id(0)
             self.cell = None
 
@@ -174,7 +174,7 @@ class CellMembership:
             for child in list(self.children.objects):
                 child.enter_cell(new_cell)
         self.position.objcell_id = new_cell.id
-        if not self.state & PS.PARTICLE_EMITTER:
+        if not self._state & PS.PARTICLE_EMITTER:
             self.part_array.set_cell_id(new_cell.id)
         self.cell = new_cell
 
@@ -211,11 +211,11 @@ class CellMembership:
         """
         self.report_collision_end(True)
         self.world.remove_from_lost_cell(self)
-        self.transient_state &= ~TS.ACTIVE
+        self._transient_state &= ~TS.ACTIVE
         self.remove_shadows_from_cells()
         self.leave_cell()
         self.position.objcell_id = 0
-        if self.part_array is not None and not self.state & PS.PARTICLE_EMITTER:
+        if self.part_array is not None and not self._state & PS.PARTICLE_EMITTER:
             self.part_array.set_cell_id(0)
         self.clear_transient_states()  # inline in retail (acclient.c:322680-322691)
 
@@ -380,7 +380,7 @@ class CellMembership:
             self.prepare_to_leave_visibility()
             self.store_position(p)
             self.world.goto_lost_cell(self)
-            self.transient_state &= ~TS.ACTIVE
+            self._transient_state &= ~TS.ACTIVE
             return SetPositionError.OK
         if int(sps.flags) & int(SetPositionFlags.DONT_CREATE_CELLS):
             transit.cell_array.do_not_load_cells = True
@@ -468,7 +468,7 @@ class CellMembership:
         """
         self.enter_cell(new_cell)
         self.position.frame.assign(new_frame)
-        if not self.state & PS.PARTICLE_EMITTER and self.part_array is not None:
+        if not self._state & PS.PARTICLE_EMITTER and self.part_array is not None:
             self.part_array.set_frame(self.position.frame)
         self.calc_cross_cells_static()
 
@@ -481,7 +481,7 @@ class CellMembership:
         cell_array = CellArray(self.world)
         cell_array.do_not_load_cells = True
         parts = self.part_array
-        if not self.state & PS.HAS_PHYSICS_BSP and parts is not None and parts.get_num_cylsphere():
+        if not self._state & PS.HAS_PHYSICS_BSP and parts is not None and parts.get_num_cylsphere():
             ObjCell.find_cell_list_for_cylspheres(self.position, parts.get_cylsphere(), cell_array)
         else:
             self.find_bbox_cell_list(cell_array)
@@ -496,7 +496,7 @@ class CellMembership:
         """
         cell_array = CellArray(self.world)
         parts = self.part_array
-        if self.state & PS.HAS_PHYSICS_BSP:
+        if self._state & PS.HAS_PHYSICS_BSP:
             self.find_bbox_cell_list(cell_array)
         elif parts is not None and parts.get_num_cylsphere():
             ObjCell.find_cell_list_for_cylspheres(self.position, parts.get_cylsphere(), cell_array)
@@ -559,7 +559,7 @@ class CellMembership:
         """
         parts = self.part_array
         cell_id = self.position.objcell_id
-        if parts is None or not cell_id or self.state & PS.PARTICLE_EMITTER or parts.get_num_cylsphere():
+        if parts is None or not cell_id or self._state & PS.PARTICLE_EMITTER or parts.get_num_cylsphere():
             return None
         if any(part.physics_bsp is not None for part in parts.parts):
             return None

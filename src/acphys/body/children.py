@@ -150,8 +150,8 @@ class Children:
             if index is not None:
                 obj.update_child(self, obj.children.part_numbers[index], obj.children.frames[index])
                 self.recalc_cross_cells()
-        if obj.state & PS.HIDDEN:
-            self.state |= PS.NODRAW
+        if obj._state & PS.HIDDEN:
+            self._state |= PS.NODRAW
         return True
 
     def _refuse_cycle(self, obj: PhysicsObj) -> None:
@@ -188,8 +188,8 @@ class Children:
             return
         if parent.children is not None:
             parent.children.remove_child(self)
-        if parent.state & PS.HIDDEN:
-            self.state &= ~PS.NODRAW
+        if parent._state & PS.HIDDEN:
+            self._state &= ~PS.NODRAW
         self.parent = None
         self.update_time = self.world.cur_time
         self.clear_transient_states()
@@ -253,14 +253,14 @@ class Children:
 
         Retail: CPhysicsObj::clear_transient_states @ 0x00511BF0 (acclient.c:319024)
         """
-        self.transient_state &= ~TS.CONTACT
+        self._transient_state &= ~TS.CONTACT
         self.calc_acceleration()
-        was_on_walkable = bool(self.transient_state & TS.ON_WALKABLE)
-        self.transient_state &= ~(TS.ON_WALKABLE | TS.WATER_CONTACT)
+        was_on_walkable = bool(self._transient_state & TS.ON_WALKABLE)
+        self._transient_state &= ~(TS.ON_WALKABLE | TS.WATER_CONTACT)
         if was_on_walkable and self.movement_manager is not None:
             self.movement_manager.leave_ground()
         self.calc_acceleration()
-        self.transient_state &= ~(
+        self._transient_state &= ~(
             TS.SLIDING
             | TS.STATIONARY_FALL
             | TS.STATIONARY_STOP

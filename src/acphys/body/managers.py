@@ -105,10 +105,10 @@ class ManagerRequests:
         if self.detection_manager is None:
             return
         self.detection_manager.receive_detection_update(info)
-        if not self.state & PhysicsState.STATIC:
-            if not self.transient_state & TransientState.ACTIVE:
+        if not self._state & PhysicsState.STATIC:
+            if not self._transient_state & TransientState.ACTIVE:
                 self.update_time = self.world.cur_time
-            self.transient_state |= TransientState.ACTIVE
+            self._transient_state |= TransientState.ACTIVE
 
     def handle_update_target(self, target_info: TargetInfo) -> None:
         """Pass a target report (a copy each) to the movement and position managers; reports with a

@@ -53,10 +53,10 @@ class Motion:
 
     def _activate_for_movement(self) -> None:
         """The tail of MakeMovementManager and get_minterp: wake a non-static body."""
-        if not self.state & PS.STATIC:
-            if not self.transient_state & TS.ACTIVE:
+        if not self._state & PS.STATIC:
+            if not self._transient_state & TS.ACTIVE:
                 self.update_time = self.world.cur_time
-            self.transient_state |= TS.ACTIVE
+            self._transient_state |= TS.ACTIVE
 
     def get_minterp(self) -> MotionInterp:
         """The motion interpreter, creating the movement manager (in its default state) if needed.
@@ -249,7 +249,7 @@ class Motion:
         Retail: CPhysicsObj::set_nodraw @ 0x0050FCA0 (acclient.c:317008)
         """
         if no_draw:
-            self.state |= PS.NODRAW
+            self._state |= PS.NODRAW
         else:
-            self.state &= ~PS.NODRAW
+            self._state &= ~PS.NODRAW
         return True

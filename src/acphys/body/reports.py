@@ -153,7 +153,7 @@ class CollisionReports:
         """
         if self.colliding_with_environment:
             return False
-        reported = bool(self.state & PS.REPORT_COLLISIONS)
+        reported = bool(self._state & PS.REPORT_COLLISIONS)
         if reported:
             self._receive_collision(
                 CollisionReport(
@@ -161,8 +161,8 @@ class CollisionReports:
                 )
             )
         self.colliding_with_environment = True
-        if self.state & PS.MISSILE:
-            self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
+        if self._state & PS.MISSILE:
+            self._state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
         return reported
 
     def _receive_collision(self, report: CollisionReport) -> None:
@@ -188,11 +188,11 @@ class CollisionReports:
 
         Retail: CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216)
         """
-        if obj.state & PS.STATIC:
+        if obj._state & PS.STATIC:
             return self.report_environment_collision(prev_has_contact)
         if self.collision_table is None:
             self.collision_table = CollisionTable()
-        record = CollisionRecord(self.world.physics_time, bool(obj.state & PS.ETHEREAL))
+        record = CollisionRecord(self.world.physics_time, bool(obj._state & PS.ETHEREAL))
         if self.collision_table.clobber(obj.id, record):
             return False
         return self.report_object_collision(obj, prev_has_contact)
@@ -213,13 +213,13 @@ class CollisionReports:
 
         Retail: CPhysicsObj::report_object_collision @ 0x00513060 (acclient.c:320227)
         """
-        if obj.state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
+        if obj._state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
             return self.report_environment_collision(prev_has_contact)
         reported = False
-        was_missile = bool(self.state & PS.MISSILE)
+        was_missile = bool(self._state & PS.MISSILE)
         relative = self.velocity - obj.velocity
-        if not obj.state & PS.IGNORE_COLLISIONS:
-            if self.state & PS.REPORT_COLLISIONS:
+        if not obj._state & PS.IGNORE_COLLISIONS:
+            if self._state & PS.REPORT_COLLISIONS:
                 if was_missile:
                     location = obj.position.determine_quadrant(f32(obj.get_height()), self.position)
                     report = CollisionReport(CollisionKind.ATTACK, obj.id, obj, location=location)
@@ -230,15 +230,15 @@ class CollisionReports:
                         obj,
                         velocity=relative.copy(),
                         me_in_contact=prev_has_contact,
-                        other_is_missile=bool(obj.state & PS.MISSILE),
-                        other_in_contact=bool(obj.transient_state & TS.CONTACT),
+                        other_is_missile=bool(obj._state & PS.MISSILE),
+                        other_in_contact=bool(obj._transient_state & TS.CONTACT),
                     )
                 self._receive_collision(report)
                 reported = True
             if was_missile:
-                self.state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
-        if obj.state & PS.REPORT_COLLISIONS and not self.state & PS.IGNORE_COLLISIONS:
-            if obj.state & PS.MISSILE:
+                self._state &= ~(PS.MISSILE | PS.ALIGN_PATH | PS.PATH_CLIPPED)
+        if obj._state & PS.REPORT_COLLISIONS and not self._state & PS.IGNORE_COLLISIONS:
+            if obj._state & PS.MISSILE:
                 location = self.position.determine_quadrant(f32(self.get_height()), obj.position)
                 report = CollisionReport(CollisionKind.ATTACK, self.id, self, location=location)
             else:
@@ -247,7 +247,7 @@ class CollisionReports:
                     self.id,
                     self,
                     velocity=relative.copy(),
-                    me_in_contact=bool(obj.transient_state & TS.CONTACT),
+                    me_in_contact=bool(obj._transient_state & TS.CONTACT),
                     other_is_missile=prev_has_contact,
                     other_in_contact=was_missile,
                 )
@@ -265,13 +265,13 @@ class CollisionReports:
         """
         obj = self.world.get_object(object_id)
         if obj is None:
-            if self.state & PS.REPORT_COLLISIONS:
+            if self._state & PS.REPORT_COLLISIONS:
                 self._receive_collision(CollisionReport(CollisionKind.END, object_id))
             return False
-        if not obj.state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
-            if self.state & PS.REPORT_COLLISIONS:
+        if not obj._state & PS.REPORT_COLLISIONS_AS_ENVIRONMENT:
+            if self._state & PS.REPORT_COLLISIONS:
                 self._receive_collision(CollisionReport(CollisionKind.END, object_id, obj))
-            if obj.state & PS.REPORT_COLLISIONS:
+            if obj._state & PS.REPORT_COLLISIONS:
                 obj._receive_collision(CollisionReport(CollisionKind.END, self.id, self))
         return True
 
@@ -285,7 +285,7 @@ class CollisionReports:
         for object_id in self.collision_table.ids():
             obj = self.world.get_object(object_id)
             if obj is not None:
-                self.report_object_collision(obj, bool(self.transient_state & TS.CONTACT))
+                self.report_object_collision(obj, bool(self._transient_state & TS.CONTACT))
 
     def report_collision_end(self, force_end: bool) -> None:
         """Drop and end-report the records untouched for over 1 s, ethereal ones untouched for any
@@ -319,7 +319,7 @@ class CollisionReports:
 
         Retail: CPhysicsObj::check_collision @ 0x00512ED0 (acclient.c:320127)
         """
-        if self.state & PS.STATIC:
+        if self._state & PS.STATIC:
             return False
         transit = Transition.make_transition(self.world)
         try:
@@ -394,7 +394,7 @@ class CollisionReports:
 
         Retail: CPhysicsObj::FindObjCollisions @ 0x0050F050 (acclient.c:316158)
         """
-        state = self.state
+        state = self._state
         if state & PS.ETHEREAL and state & PS.IGNORE_COLLISIONS:
             return TR.OK
         path = transition.sphere_path

@@ -39,7 +39,7 @@ def uncovered_reason(
         return "shape: parts, cylspheres or a BSP"
     if not 1 <= len(setup.spheres) <= MAX_SPHERES:
         return "shape: not one or two spheres"
-    if body.state & _UNCOVERED_STATES or body.transient_state & TransientState.CHECK_ETHEREAL:
+    if body._state & _UNCOVERED_STATES or body._transient_state & TransientState.CHECK_ETHEREAL:
         return "state"
     managers = (
         body.position_manager,
@@ -64,6 +64,8 @@ def uncovered_reason(
         return "collision records"
     if body.observer is not None and body.observer != observer:
         return "an observer"
+    if body.on_step is not None:
+        return "a step callback"
     if body.cell is not None and cell_index(body.position.objcell_id) < 0:
         return "not in a known land cell"
     shadows = body.shadow_objects

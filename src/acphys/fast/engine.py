@@ -37,6 +37,7 @@ from acphys.math.cell_id import format_cell_id
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
+from acphys.trace import heading_of, motion_record
 from acphys.world.obj_cell import ShadowObj
 from acphys.world.world import World
 
@@ -435,18 +436,24 @@ class FastPhysics(Physics):
         events.extend(reports)
         if bits & kernels.EVENT_COLLISION_ENVIRONMENT:
             events.append("collision:environment")
+        playing = int(values[25])
+        animation = self._animations.animations[playing].name if playing >= 0 else None
         return {
             "t": values[1],
             "body": body.name,
+            "id": f"0x{body.id:08X}",
             "quantum": values[2],
             "cell": format_cell_id(int(values[3])),
             "origin": values[4:7],
             "orientation": values[7:11],
+            "heading": heading_of(values[7:11]),
             "velocity": values[11:14],
             "cached_velocity": values[14:17],
             "omega": values[17:20],
             "transient": flag_names(transient, TransientState),
             "contact_normal": values[21:24] if transient & TransientState.CONTACT else None,
+            # the interpreter's state is the body's: no kernel step changes it
+            "motion": motion_record(body, animation, values[26] if playing >= 0 else None),
             "events": events,
         }
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
-from acphys.flags import PhysicsState, TransientState
+from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
@@ -31,8 +31,8 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["covered"] = covered
     record["stale"] = False
     record["obj_id"] = body.id
-    record["state"] = int(body.state)
-    record["transient"] = int(body.transient_state)
+    record["state"] = body._state  # the plain ints behind the public flags
+    record["transient"] = body._transient_state
     record["update_time"] = body.update_time
     record["player_distance"] = body.player_distance
     record["player_vector"] = _vec(body.player_vector)
@@ -72,7 +72,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["collider"] = (
         parts is not None
         and body.weenie_obj is None
-        and not body.state & PhysicsState.HAS_PHYSICS_BSP
+        and not body._state & PhysicsState.HAS_PHYSICS_BSP
         and not parts.setup.cylspheres
         and len(spheres) <= 2
     )
@@ -93,8 +93,8 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
 def store_body(record: np.void, body: PhysicsObj) -> None:
     """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell, shadows or
     sequence, which the engine hands back, nor its parts, which follow its sequence)."""
-    body.state = PhysicsState(int(record["state"]))
-    body.transient_state = TransientState(int(record["transient"]))
+    body._state = int(record["state"])
+    body._transient_state = int(record["transient"])
     body.update_time = float(record["update_time"])
     body.player_distance = float(record["player_distance"])
     body.player_vector = _vector(record["player_vector"])

@@ -100,7 +100,7 @@ class ConstraintManager:
         travelled = self.constraint_pos_offset
         start = self.constraint_distance_start
         limit = self.constraint_distance_max
-        if self.physics_obj.transient_state & TS.CONTACT:
+        if self.physics_obj._transient_state & TS.CONTACT:
             if travelled >= limit:
                 offset.origin.x = offset.origin.y = offset.origin.z = 0.0
             elif travelled > start:

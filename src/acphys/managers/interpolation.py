@@ -207,7 +207,7 @@ class InterpolationManager:
         """
         queue = self.position_queue
         obj = self.physics_obj
-        if not queue or not obj.transient_state & TS.CONTACT:
+        if not queue or not obj._transient_state & TS.CONTACT:
             return
         head = queue[0]
         distance = position_distance(obj.position, head)

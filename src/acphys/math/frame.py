@@ -22,10 +22,14 @@ Conventions, all retail's:
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 from acphys.constants import EPSILON
-from acphys.math.vector import Vector3, compass_heading, zero_vector
+from acphys.math.vector import Vector3, compass_heading, float_array, zero_vector
 from acphys.precision import f32, pack3, pack4, pack9, unpack3, unpack4, unpack9
+
+if TYPE_CHECKING:
+    import numpy as np
 
 _new = object.__new__
 _isnan = math.isnan
@@ -97,6 +101,30 @@ class Frame:
 
     def __repr__(self) -> str:
         return f"Frame({self.origin!r}, q=({self.qw}, {self.qx}, {self.qy}, {self.qz}))"
+
+    # -- NumPy ------------------------------------------------------------------------------
+
+    def to_numpy(self) -> np.ndarray:
+        """``[x, y, z, qw, qx, qy, qz]``: the origin, then the quaternion (w first, as traces
+        write it), a new float64 array of shape (7,). ``numpy.asarray(frame)`` gives the same."""
+        o = self.origin
+        return float_array((o.x, o.y, o.z, self.qw, self.qx, self.qy, self.qz))
+
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        """``numpy.asarray(frame)``: :meth:`to_numpy`, as ``dtype`` when one is given."""
+        o = self.origin
+        return float_array((o.x, o.y, o.z, self.qw, self.qx, self.qy, self.qz), dtype, copy, "Frame")
+
+    def to_matrix(self) -> np.ndarray:
+        """The 4x4 homogeneous transform from this frame to its parent's (for a body's frame: from
+        body-local to landblock-local coordinates), built from the cached rotation ``m``: column j
+        of the rotation is local axis j in the parent frame, the last column the origin."""
+        import numpy as np
+
+        matrix = np.eye(4)
+        matrix[:3, :3] = np.array(self.m, dtype=np.float64).reshape(3, 3).T
+        matrix[:3, 3] = (self.origin.x, self.origin.y, self.origin.z)
+        return matrix
 
     # -- the cached matrix ----------------------------------------------------------------
 

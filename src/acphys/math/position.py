@@ -2,10 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
+from acphys.constants import BLOCK_LENGTH
 from acphys.math.cell_id import format_cell_id, get_block_offset
 from acphys.math.frame import Frame
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, float_array
 from acphys.precision import f32, pack3, unpack3
+
+if TYPE_CHECKING:
+    import numpy as np
 
 _new = object.__new__
 
@@ -27,6 +33,25 @@ class Position:
 
     def __repr__(self) -> str:
         return f"Position({format_cell_id(self.objcell_id)}, {self.frame!r})"
+
+    def to_numpy(self) -> np.ndarray:
+        """The frame's ``[x, y, z, qw, qx, qy, qz]`` (landblock-local, in the landblock of
+        ``objcell_id``, which is not in the array), a new float64 array of shape (7,).
+        ``numpy.asarray(position)`` gives the same."""
+        return self.frame.to_numpy()
+
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        """``numpy.asarray(position)``: :meth:`to_numpy`, as ``dtype`` when one is given."""
+        f = self.frame
+        o = f.origin
+        return float_array((o.x, o.y, o.z, f.qw, f.qx, f.qy, f.qz), dtype, copy, "Position")
+
+    def global_origin(self) -> tuple[float, float, float]:
+        """The origin in one frame for the whole map, as three doubles: landblock ``0xXXYY``
+        starts at (XX·192, YY·192) m, so a path crossing a landblock seam stays continuous."""
+        block = self.objcell_id >> 16
+        o = self.frame.origin
+        return ((block >> 8) * BLOCK_LENGTH + o.x, (block & 0xFF) * BLOCK_LENGTH + o.y, o.z)
 
     @property
     def origin(self) -> Vector3:

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING, Any
 
 from acphys.constants import EPSILON
 from acphys.precision import f32, pack3, unpack3
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: ``object.__new__``: the operators below build their results with it and set the slots
 #: directly, skipping ``__init__``. Constructing vectors is the commonest thing a body step does.
@@ -47,6 +51,14 @@ class Vector3:
 
     def __repr__(self) -> str:
         return f"Vector3({self.x!r}, {self.y!r}, {self.z!r})"
+
+    def to_numpy(self) -> np.ndarray:
+        """``[x, y, z]`` as a new float64 array of shape (3,) (exact: each component is a float32)."""
+        return float_array((self.x, self.y, self.z))
+
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        """``numpy.asarray(vector)``: :meth:`to_numpy`, as ``dtype`` when one is given."""
+        return float_array((self.x, self.y, self.z), dtype, copy, "Vector3")
 
     def __add__(self, other: Vector3) -> Vector3:
         v = _new(Vector3)
@@ -161,6 +173,22 @@ class Vector3:
         if flat.normalize_check_small():
             return 0.0
         return compass_heading(flat.x, flat.y)
+
+
+def float_array(
+    values: Iterable[float], dtype: Any = None, copy: bool | None = None, what: str = ""
+) -> np.ndarray:
+    """``values`` as a new float64 NumPy array (as ``dtype`` when given): what the math classes'
+    ``to_numpy`` and ``__array__`` give. Their values are Python floats, not an array, so a
+    ``copy=False`` request (NumPy 2's ``numpy.asarray(x, copy=False)``) is a ValueError.
+    NumPy is imported here, on first use, so that ``import acphys`` does not load it.
+    """
+    if copy is False:
+        raise ValueError(f"a {what} is not stored as an array: it cannot be viewed without a copy")
+    import numpy as np
+
+    array = np.array(tuple(values), dtype=np.float64)
+    return array if dtype is None else array.astype(dtype, copy=False)
 
 
 def zero_vector() -> Vector3:

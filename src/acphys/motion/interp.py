@@ -98,7 +98,7 @@ def on_ground(obj: PhysicsObj) -> bool:
 
     Retail: CPhysicsObj::on_ground @ 0x00527B20 (acclient.c:343372)
     """
-    return bool(obj.transient_state & TS.CONTACT) and bool(obj.transient_state & TS.ON_WALKABLE)
+    return bool(obj._transient_state & TS.CONTACT) and bool(obj._transient_state & TS.ON_WALKABLE)
 
 
 def motion_allows_jump(substate: int) -> int:
@@ -313,7 +313,7 @@ class MotionInterp:
             return False
         if motion in (DEAD, FALLING, TURN_RIGHT, TURN_LEFT):
             return True
-        if self._is_non_creature() or not obj.state & PS.GRAVITY:
+        if self._is_non_creature() or not obj._state & PS.GRAVITY:
             return True
         return on_ground(obj)
 
@@ -351,7 +351,7 @@ class MotionInterp:
         Retail: CMotionInterp::jump_is_allowed @ 0x005282B0 (acclient.c:343921)
         """
         obj = self.physics_obj
-        if obj is None or not (self._is_non_creature() or not obj.state & PS.GRAVITY or on_ground(obj)):
+        if obj is None or not (self._is_non_creature() or not obj._state & PS.GRAVITY or on_ground(obj)):
             return ME.CANT_JUMP_WHILE_IN_THE_AIR, 0
         if obj.is_fully_constrained():
             return ME.GENERAL_MOVEMENT_FAILURE, 0
@@ -432,7 +432,7 @@ class MotionInterp:
         Retail: CMotionInterp::LeaveGround @ 0x00528B00 (acclient.c:344456)
         """
         obj = self.physics_obj
-        if obj is None or self._is_non_creature() or not obj.state & PS.GRAVITY:
+        if obj is None or self._is_non_creature() or not obj._state & PS.GRAVITY:
             return
         obj.set_local_velocity(self.get_leave_ground_velocity())
         self.standing_longjump = False
@@ -446,7 +446,7 @@ class MotionInterp:
         Retail: CMotionInterp::HitGround @ 0x00528AC0 (acclient.c:344428)
         """
         obj = self.physics_obj
-        if obj is None or self._is_non_creature() or not obj.state & PS.GRAVITY:
+        if obj is None or self._is_non_creature() or not obj._state & PS.GRAVITY:
             return
         obj.remove_link_animations()
         self.apply_current_movement(False, False)

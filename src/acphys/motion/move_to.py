@@ -738,7 +738,7 @@ class MoveToManager:
         Retail: MoveToManager::UseTime @ 0x0052A780 (acclient.c:346017)
         """
         obj = self.physics_obj
-        if obj is None or not obj.transient_state & TransientState.CONTACT or not self.pending_actions:
+        if obj is None or not obj._transient_state & TransientState.CONTACT or not self.pending_actions:
             return
         if self.top_level_object_id and self.movement_type != MovementType.INVALID and not self.initialized:
             return

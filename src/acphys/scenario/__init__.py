@@ -12,6 +12,8 @@ typo never passes silently.
 from __future__ import annotations
 
 import errno
+import hashlib
+import json
 import math
 import tomllib
 from collections.abc import Callable
@@ -36,6 +38,7 @@ from acphys.physics_obj import PhysicsObj
 from acphys.precision import f32
 from acphys.scenario import values as read
 from acphys.scenario.events import read_event, speed_limited
+from acphys.scenario.live import ScenarioParts
 from acphys.scenario.motion_tables import builtin_motion_table, builtin_motion_tables, read_motion_tables
 from acphys.scenario.retail_data import HUMAN_SETUP_ID, SETUP_ID_TYPE, RetailData, read_data, setup_id
 from acphys.scenario.scripts import read_scripts
@@ -444,7 +447,9 @@ def parse_scenario(
         raise ScenarioError(one_line(f"{source}: not valid TOML: nested too deeply to read")) from None
     except ValueError as error:  # TOMLDecodeError, or a number Python will not convert
         raise ScenarioError(one_line(f"{source}: not valid TOML: {error}")) from None
-    return build_scenario(document, source, default_name, folder, read.TomlLines(text), engine)
+    sim = build_scenario(document, source, default_name, folder, read.TomlLines(text), engine)
+    sim.scenario_sha256 = hashlib.sha256(text.encode("utf-8")).hexdigest()  # the text as written
+    return sim
 
 
 def _read_bodies(
@@ -553,7 +558,15 @@ def build_scenario(
         engine=engine,
     )
     sim.warnings = ctx.warnings
+    sim.scenario_parts = ScenarioParts(setups, tables, scripts, document.get("data", {}), folder)
+    sim.scenario_sha256 = _document_sha256(document)
     return sim
+
+
+def _document_sha256(document: dict[str, Any]) -> str:
+    """A scenario's hash for trace headers when built from values: of their canonical JSON."""
+    text = json.dumps(document, sort_keys=True, default=str, separators=(",", ":"))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def builtin_scenario_text(name: str) -> str:

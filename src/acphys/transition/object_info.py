@@ -91,17 +91,17 @@ class ObjectInfo:
 
         Retail: OBJECTINFO::missile_ignore @ 0x0050CEB0 (acclient.c:314069)
         """
-        if collideobject.state & PS.MISSILE:
+        if collideobject._state & PS.MISSILE:
             return True
         mover = self.object
         if mover is None:
             raise ValueError("OBJECTINFO.missile_ignore: the transition has no moving object")
-        if not mover.state & PS.MISSILE or collideobject.id == self.target_id:
+        if not mover._state & PS.MISSILE or collideobject.id == self.target_id:
             return False
         weenie = collideobject.weenie_obj
         if weenie is None:
             return False
-        if collideobject.state & PS.ETHEREAL:
+        if collideobject._state & PS.ETHEREAL:
             return True
         return self.target_id != 0 and weenie.is_creature()
 
@@ -121,8 +121,8 @@ class ObjectInfo:
         parts = obj.part_array
         self.step_up_height = f32(parts.get_step_up_height()) if parts is not None else 0.0
         self.step_down_height = f32(parts.get_step_down_height()) if parts is not None else 0.0
-        self.ethereal = bool(obj.state & PS.ETHEREAL)
-        self.step_down = not obj.state & PS.MISSILE
+        self.ethereal = bool(obj._state & PS.ETHEREAL)
+        self.step_down = not obj._state & PS.MISSILE
         weenie = obj.weenie_obj
         if weenie is not None:
             if weenie.is_impenetrable():

@@ -815,7 +815,7 @@ class Transition:
         if info.collision_normal_valid:
             info.set_sliding_normal(info.collision_normal)
         mover = obj.object
-        if not obj.state & OI.IS_VIEWER and mover is not None and mover.state & PhysicsState.GRAVITY:
+        if not obj.state & OI.IS_VIEWER and mover is not None and mover._state & PhysicsState.GRAVITY:
             if moved:
                 info.frames_stationary_fall = 0
             elif info.frames_stationary_fall == 0:

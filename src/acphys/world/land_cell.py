@@ -257,7 +257,7 @@ class LandCell(SortCell):
         if (
             self.get_block_water_type() == WT.ENTIRELY_WATER
             and not info.state & OI.IS_VIEWER
-            and not info.object.state & PS.MISSILE
+            and not info.object._state & PS.MISSILE
         ):
             return TS.COLLIDED
         water_depth = self.get_water_depth(local_point)

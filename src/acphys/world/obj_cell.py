@@ -375,7 +375,7 @@ class ObjCell:
 
         if not obj.id or obj.parent is not None:
             return
-        if obj.state & PhysicsState.HIDDEN and detection_type == ENTERED_DETECTION:
+        if obj._state & PhysicsState.HIDDEN and detection_type == ENTERED_DETECTION:
             return
         if self.voyeur_table is None:
             return

@@ -78,9 +78,7 @@ class World:
     def add_object(self, obj: PhysicsObj, object_id: int | None = None) -> int:
         """Register ``obj`` under ``object_id`` (or the next free id) and return the id."""
         if object_id is None:
-            while self._next_object_id in self._objects:
-                self._next_object_id += 1
-            object_id = self._next_object_id
+            object_id = self.next_object_id()
         if not 0 < object_id <= 0xFFFFFFFF:
             raise ValueError(f"object id must be a non-zero 32-bit id, got {object_id:#x}")
         if object_id in self._objects:
@@ -88,6 +86,12 @@ class World:
             raise ValueError(f"object id 0x{object_id:08X} is already used by {owner!r}")
         self._objects[object_id] = obj
         return object_id
+
+    def next_object_id(self) -> int:
+        """The id :meth:`add_object` gives the next object registered without one."""
+        while self._next_object_id in self._objects:
+            self._next_object_id += 1
+        return self._next_object_id
 
     def remove_object(self, obj: PhysicsObj) -> None:
         """Delete ``obj`` from the world: ``exit_world``, ``leave_world``, out of the object table,

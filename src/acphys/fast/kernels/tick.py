@@ -106,7 +106,7 @@ NUM_COUNTERS = 8
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
-LOG_WIDTH = 25
+LOG_WIDTH = 27
 EVENT_HIT_GROUND = 1
 EVENT_LEAVE_GROUND = 2
 EVENT_COLLISION_ENVIRONMENT = 4
@@ -774,6 +774,8 @@ def _log_step(log, counters, b, i, t, quantum, events):
         log[n, 7 + k] = b.q[k]
     log[n, 20] = b.transient
     log[n, 24] = events
+    log[n, 25] = b.seq_anim[b.seq_curr] if b.seq_nodes else -1  # the animation playing, if any
+    log[n, 26] = b.seq_frame_number
     counters[LOGGED] = n + 1
 
 

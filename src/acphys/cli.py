@@ -36,6 +36,7 @@ from acphys.plot import (
     read_paths,
     select_bodies,
     shown_name,
+    trace_world,
     write_plot,
 )
 from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenarios, load_scenario
@@ -44,6 +45,7 @@ from acphys.simulation import ENGINES, Simulation
 from acphys.trace import TraceError, brief, trace_schema
 from acphys.trace_diff import DiffError, DiffReport, Divergence, compare_traces, split_names
 from acphys.view import show
+from acphys.world_sketch import sketch_world
 
 #: The bodies ``acphys run``'s summary lists (rich lays out about a row a millisecond; a run of
 #: thousands of bodies is read from its trace).
@@ -89,7 +91,9 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--trace", metavar="FILE", help="write a JSON Lines trace of every step")
     run.add_argument("--until", metavar="SECONDS", type=float, help="stop at this time instead")
-    run.add_argument("--plot", metavar="PNG", help="draw the run's paths to a PNG (as acphys plot does)")
+    run.add_argument(
+        "--plot", metavar="FILE", help="draw the run over its world: a .png, .svg or .pdf (as acphys plot)"
+    )
     run.add_argument(
         "--engine",
         choices=ENGINES,
@@ -126,15 +130,40 @@ def _build_parser() -> argparse.ArgumentParser:
     )
     diff.add_argument("--json", metavar="FILE", help="also write the report as JSON (-: on stdout, alone)")
 
-    plot = commands.add_parser("plot", help="a PNG of a trace: paths from above, height over time, events")
+    plot = commands.add_parser(
+        "plot", help="a picture of a trace over its world: paths from above, height over time, events"
+    )
     plot.add_argument("trace")
-    plot.add_argument("-o", "--output", metavar="PNG", required=True, help="the PNG file to write")
+    plot.add_argument(
+        "-o", "--output", metavar="FILE", required=True, help="the picture to write: .png, .svg or .pdf"
+    )
+    plot.add_argument(
+        "--scenario",
+        metavar="S",
+        help="draw this scenario's world (a file or a built-in name; default: the built-in the trace names)",
+    )
     plot.add_argument("--bodies", metavar="A,B", help="only these bodies (comma-separated names)")
     plot.add_argument("--view", choices=VIEWS, help="one panel only (default: top and height)")
 
-    view = commands.add_parser("view", help="a text picture of a trace: a table per body and a map")
-    view.add_argument("trace")
+    view = commands.add_parser(
+        "view", help="a trace as text (a table per body and a map), or a 3-D replay page (--html)"
+    )
+    view.add_argument(
+        "trace", metavar="TRACE_OR_SCENARIO", help="a trace, or (with --html) a scenario to run"
+    )
     view.add_argument("--bodies", metavar="A,B", help="only these bodies (comma-separated names)")
+    view.add_argument("--html", metavar="OUT.html", help="write a self-contained 3-D replay page (WebGL)")
+    view.add_argument(
+        "--scenario",
+        metavar="S",
+        help="--html of a trace: draw this scenario's world (default: the built-in the trace names)",
+    )
+    view.add_argument(
+        "--until", metavar="SECONDS", type=float, help="--html of a scenario: run to this time"
+    )
+    view.add_argument(
+        "--engine", choices=ENGINES, help="--html of a scenario: the engine to run (default reference)"
+    )
 
     bench = commands.add_parser("bench", help="the performance suite: rates and ratios to a baseline")
     bench.add_argument("--bodies", type=int, default=100, help="bodies per workload (default 100)")
@@ -216,9 +245,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             sys.stdout.write(json.dumps(trace_schema(), indent=2) + "\n")
             return 0
         if args.command == "plot":
-            return _plot(console, args.trace, args.output, args.bodies, args.view)
+            return _plot(console, args.trace, args.output, args.bodies, args.view, args.scenario)
         if args.command == "view":
-            return _view(console, args.trace, args.bodies)
+            return _view(console, args)
         if args.command == "bench":
             return _bench(console, args.bodies, args.seconds, args.engine, args.workload, args.json)
         if args.command == "dat":
@@ -289,7 +318,7 @@ def _run(
         _say(console, f"trace: {trace}")
     if plot is not None:
         paths = recorder.paths if recorder is not None else read_paths(str(trace))
-        write_plot(paths, plot, title=f"{sim.name}: {sim.time:g} s")
+        write_plot(paths, plot, title=sim.name, world=sketch_world(sim))
         _say(console, f"plot: {plot}")
     return 0
 
@@ -510,16 +539,55 @@ def _corpus_table(results: list[CaseResult], title: str) -> Table:
     return table
 
 
-def _plot(console: Console, trace: str, output: str, bodies: str | None, view: str | None) -> int:
+def _plot(
+    console: Console,
+    trace: str,
+    output: str,
+    bodies: str | None,
+    view: str | None,
+    scenario: str | None = None,
+) -> int:
     names = parse_bodies(bodies)
     check_output(output)
-    write_plot(read_paths(trace), output, bodies=names, view=view, title=Path(trace).name)
+    paths = read_paths(trace)
+    found = trace_world(trace, scenario)
+    if found.note is not None:
+        _say(console, f"note: {found.note}")
+    write_plot(paths, output, bodies=names, view=view, title=found.title, world=found.world)
     _say(console, f"plot: {output}")
     return 0
 
 
-def _view(console: Console, trace: str, bodies: str | None) -> int:
+def _view(console: Console, args: argparse.Namespace) -> int:
+    """``acphys view``: the text view of a trace, or with ``--html`` the replay page of a trace or
+    a scenario (:mod:`acphys.viewer`)."""
+    trace, bodies = args.trace, args.bodies
     names = parse_bodies(bodies)
+    if args.html is not None:
+        from acphys.viewer import write_html
+
+        result = write_html(
+            trace,
+            args.html,
+            scenario=args.scenario,
+            bodies=names,
+            until=args.until,
+            engine=args.engine,
+            warn=lambda message: print(f"acphys: warning: {one_line(message)}", file=sys.stderr),
+        )
+        records = f"{result.records:,} records, {result.events:,} events"
+        _say(console, f"view: {args.html} ({_count(result.bodies, 'body', 'bodies')}, {records}, "
+                      f"{result.bytes / 1e6:.2f} MB)")
+        return 0
+    for option in ("scenario", "until", "engine"):
+        if getattr(args, option) is not None:
+            return _fail(f"--{option} is for --html (the text view reads a trace)", EXIT_BAD_INPUT)
+    if (trace in builtin_scenarios() and not Path(trace).exists()) or trace.endswith(".toml"):
+        return _fail(
+            f"{one_line(trace)}: a scenario; the text view reads a trace (acphys run --trace), "
+            "--html runs the scenario into a replay page",
+            EXIT_BAD_INPUT,
+        )
     paths = read_paths(trace)
     selected = select_bodies(paths, names)
     show(console, selected, title=f"{Path(trace).name}: {len(selected)} bodies")

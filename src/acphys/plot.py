@@ -1,4 +1,4 @@
-"""Pictures of a run (contract 3): a trace's paths in one global frame, and a PNG of them.
+"""Pictures of a run (contract 3): a trace's paths over the world they ran in, as PNG, SVG or PDF.
 
 A trace's ``origin`` is local to the landblock named by its ``cell``; here
 every sample is moved into the landblock-global frame (landblock ``0xXXYY``'s
@@ -7,12 +7,21 @@ a seam draws one continuous path. :func:`read_paths` reads a trace file,
 :class:`PathRecorder` collects the same paths from a running simulation, and
 :func:`write_plot` draws them with matplotlib's non-interactive Agg backend:
 the paths from above (``top``), from the south (``side``: east against
-height) and height over time (``height``), with ``hit_ground``,
-``leave_ground`` and collision events marked.
+height) and height over time (``height``), each body's start a circle and its
+end a square, with ``hit_ground``, ``leave_ground`` and collision events as
+small marks.
+
+The picture's frame (:func:`plot_frame`) is the landblock's own metres for a run
+in one landblock, and metres from the south-west landblock's corner for a run
+over several, the seams drawn and each landblock named. Under the paths goes
+the world (:mod:`acphys.world_sketch`: terrain contours, water, static objects,
+buildings, rooms and doorways) of the run at hand, of ``--scenario``, or of the
+built-in scenario a trace's header names (:func:`trace_world`).
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
 import re
 import sys
@@ -25,23 +34,29 @@ from itertools import islice
 from pathlib import Path
 from typing import Any
 
-from acphys.constants import BLOCK_LENGTH
+from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, CELLS_PER_BLOCK
 from acphys.inputs import one_line
 from acphys.math.cell_id import landblock_of
 from acphys.physics_obj import PhysicsObj
-from acphys.trace import TraceError, brief, read_trace, step_record
+from acphys.trace import TraceError, brief, read_header, read_trace, step_record
+from acphys.world.terrain import WaterType
+from acphys.world_sketch import MAX_SKETCH_FACES, SHAPE_KINDS, ShapeSketch, WorldSketch, sketch_world
 
 #: The panels ``--view`` can pick; without it the figure has ``top`` and ``height``.
 VIEWS = ("top", "side", "height")
 DEFAULT_VIEWS = ("top", "height")
 
-#: Events marked on the figure: (label, marker, edge colour, size), by event kind; the
-#: smaller collision cross sits inside the hit_ground triangle when both happen at once.
+#: Picture formats by file extension (matplotlib's ``savefig`` format names).
+FORMATS = {".png": "png", ".svg": "svg", ".pdf": "pdf"}
+
+#: Events marked on the figure: (label, marker, colour, size), by event kind: small and
+#: translucent (:data:`EVENT_ALPHA`), so that a run of them does not hide the path.
 EVENT_MARKERS = {
-    "hit_ground": ("hit_ground", "v", "black", 90),
-    "leave_ground": ("leave_ground", "^", "black", 90),
-    "collision": ("collision", "X", "red", 35),
+    "hit_ground": ("hit_ground", "v", "#1b7837", 18),
+    "leave_ground": ("leave_ground", "^", "#762a83", 18),
+    "collision": ("collision", "x", "#d7191c", 22),
 }
+EVENT_ALPHA = 0.6
 
 
 #: The most samples a picture keeps, over all its bodies and event marks: more than a PNG panel
@@ -61,8 +76,12 @@ MAX_EVENT_KINDS = 64
 #: acphys writes origins as float32 and no run's time comes near it; within it, every sum and
 #: difference the plot and the view take is a finite float64.
 MAX_MAGNITUDE = 3.4028234663852886e38
-#: The most bodies the legend names (each its own line); more are drawn as one collection.
-LEGEND_BODIES = 12
+#: The most bodies the legend names (each its own line, in columns of :data:`LEGEND_ROWS`); more
+#: are drawn as one collection, and the legend's title says how many it leaves unnamed.
+LEGEND_BODIES = 30
+LEGEND_ROWS = 15
+#: The most body names an error message lists.
+MESSAGE_NAMES = 12
 #: How many characters of a name the legend, the table and the map show.
 SHOWN_NAME = 40
 
@@ -396,20 +415,36 @@ def select_bodies(paths: dict[str, BodyPath], names: Sequence[str] | None) -> li
 
 
 def _some(names: Collection[str]) -> str:
-    """The first :data:`LEGEND_BODIES` names as a message shows them (one line), and how many more."""
-    shown = ", ".join(shown_name(name) for name in islice(names, LEGEND_BODIES)) or "none"
-    more = len(names) - LEGEND_BODIES
+    """The first :data:`MESSAGE_NAMES` names as a message shows them (one line), and how many more."""
+    shown = ", ".join(shown_name(name) for name in islice(names, MESSAGE_NAMES)) or "none"
+    more = len(names) - MESSAGE_NAMES
     return f"{shown} and {more:,} more" if more > 0 else shown
 
 
+def picture_format(output: str | Path) -> str:
+    """The format a picture at ``output`` is written in, by its extension (:data:`FORMATS`); any
+    other extension is a :class:`PlotError` naming the ones acphys writes."""
+    path = Path(output)
+    fmt = FORMATS.get(path.suffix.lower())
+    if fmt is None:
+        what = f"a {path.suffix!r} file" if path.suffix else "a file without an extension"
+        raise PlotError(
+            f"{one_line(str(path))}: cannot write {what}: a picture is .png, .svg or .pdf "
+            "(the extension picks the format)"
+        )
+    return fmt
+
+
 def check_output(output: str | Path) -> Path:
-    """The picture's path, if it can be written there (checked before any work is done)."""
+    """The picture's path, if it can be written there in a format acphys writes (checked before
+    any work is done)."""
     path = Path(output)
     label = one_line(str(path))
     if path.is_dir():
-        raise PlotError(f"{label}: is a directory, not a PNG file")
+        raise PlotError(f"{label}: is a directory, not a picture file")
     if path.is_fifo() or path.is_socket():  # a pipe would block the write until someone reads it
         raise PlotError(f"{label}: cannot write: not a regular file")
+    picture_format(path)
     parent = path.parent
     if not parent.is_dir():
         raise PlotError(f"{label}: cannot write: no directory {one_line(str(parent))!r}")
@@ -421,6 +456,73 @@ def print_warning(message: str) -> None:
     print(f"acphys: warning: {message}", file=sys.stderr)
 
 
+# -- the world under a trace ------------------------------------------------------------------
+
+
+@dataclass
+class TraceWorld:
+    """What :func:`trace_world` found for a trace: the world to draw (None: paths only), the
+    picture's title and a note for the user (None when there is nothing to say)."""
+
+    world: WorldSketch | None
+    title: str
+    note: str | None = None
+
+
+def scenario_sha256(name: str) -> str:
+    """The SHA-256 a trace header gives for the built-in scenario ``name`` (of its text, UTF-8)."""
+    from acphys.scenario import builtin_scenario_text
+
+    return hashlib.sha256(builtin_scenario_text(name).encode("utf-8")).hexdigest()
+
+
+def trace_world(trace: str | Path, scenario: str | None = None) -> TraceWorld:
+    """The world a trace was run in, for its picture.
+
+    With ``scenario`` (a file or a built-in name, as ``acphys run`` takes it) that scenario is
+    built and drawn under the paths. Without it, the trace's header names the scenario: a
+    built-in one whose SHA-256 is the header's is built; anything else (a scenario of the
+    user's, a changed built-in, a v1 trace without a header) leaves the paths alone, with a
+    note saying so. A scenario that cannot be built is a :class:`ScenarioError`.
+    """
+    from acphys.scenario import builtin_scenarios, load_scenario
+
+    label = one_line(str(trace))
+    header = read_header(trace)
+    named = header.get("scenario") if isinstance(header, dict) else None
+    name = named.get("name") if isinstance(named, dict) else None
+    sha = named.get("sha256") if isinstance(named, dict) else None
+    name = name if isinstance(name, str) and name else None
+    if scenario is not None:
+        sim = load_scenario(scenario)
+        note = None
+        if isinstance(sha, str) and sim.scenario_sha256 is not None and sha != sim.scenario_sha256:
+            note = (
+                f"{label}: the trace was written from another text than {one_line(scenario)!r} "
+                f"(its scenario {shown_name(name or '?')!r} has another sha256): drawn over it all the same"
+            )
+        return TraceWorld(sketch_world(sim), sim.name or name or Path(trace).name, note)
+    hint = "give --scenario FILE to draw its world"
+    if name is None:
+        return TraceWorld(
+            None, Path(trace).name, f"{label}: the trace names no scenario: paths only ({hint})"
+        )
+    if name not in builtin_scenarios():
+        return TraceWorld(
+            None, name, f"{label}: scenario {shown_name(name)!r} is not built in: paths only ({hint})"
+        )
+    if sha != scenario_sha256(name):
+        return TraceWorld(
+            None,
+            name,
+            f"{label}: scenario {name!r} is not the built-in text (another sha256): paths only ({hint})",
+        )
+    return TraceWorld(sketch_world(load_scenario(name)), name)
+
+
+# -- the picture ------------------------------------------------------------------------------
+
+
 def write_plot(
     paths: dict[str, BodyPath],
     output: str | Path,
@@ -428,30 +530,43 @@ def write_plot(
     view: str | None = None,
     title: str = "",
     warn: Callable[[str], None] = print_warning,
+    world: WorldSketch | None = None,
 ) -> Path:
-    """Draw the paths of ``bodies`` (default: all) to a PNG at ``output``; returns its path.
+    """Draw the paths of ``bodies`` (default: all) over ``world`` (if given) to ``output``, a PNG,
+    SVG or PDF by its extension; returns its path.
 
     ``view`` is one of :data:`VIEWS` for a single panel; by default the figure
-    has the paths from above and height over time side by side. What the
-    picture leaves out (samples past :data:`MAX_POINTS`, characters the font
+    has the paths from above and height over time side by side. ``title`` is
+    the scenario's name. What the picture leaves out (samples past
+    :data:`MAX_POINTS`, faces past the sketch's limit, characters the font
     lacks) is told to ``warn`` once, by default as an ``acphys: warning:`` line
     on stderr.
     """
     output = check_output(output)
+    fmt = picture_format(output)
     label = one_line(str(output))
     with warnings.catch_warnings(record=True) as caught, _user_text_is_plain():
         warnings.simplefilter("always")
-        figure = make_figure(paths, bodies, view, title)
+        figure = make_figure(paths, bodies, view, title, world=world)
         try:
-            figure.savefig(output, format="png")
+            figure.savefig(output, format=fmt, metadata=_REPRODUCIBLE.get(fmt))
         except OSError as error:
             raise PlotError(f"{label}: cannot write: {error.strerror or error}") from None
     thinned = [path for path in select_bodies(paths, bodies) if path.stride > 1]
     if thinned:
         warn(f"{label}: {thinning(thinned)}")
+    if world is not None and world.faces_left_out:
+        warn(
+            f"{label}: the world has more faces than a picture keeps ({MAX_SKETCH_FACES:,}): "
+            f"{world.faces_left_out:,} left out"
+        )
     for message in _matplotlib_warnings(caught):
         warn(f"{label}: {message}")
     return output
+
+
+#: What each format's file records of when it was made: nothing, so one picture is one file.
+_REPRODUCIBLE: dict[str, dict[str, Any]] = {"svg": {"Date": None}, "pdf": {"CreationDate": None}}
 
 
 def thinning(paths: Sequence[BodyPath]) -> str:
@@ -478,18 +593,96 @@ _MISSING_GLYPH = re.compile(r"Glyph \d+ .* missing from")
 
 def _user_text_is_plain() -> Any:
     """A matplotlib settings context in which no text is read as maths or LaTeX: the
-    names in a picture are the user's (``$x^$`` is a name, not a formula)."""
+    names in a picture are the user's (``$x^$`` is a name, not a formula); SVG ids are salted
+    the same way every time."""
     import matplotlib
 
-    return matplotlib.rc_context({"text.parse_math": False, "text.usetex": False})
+    return matplotlib.rc_context({"text.parse_math": False, "text.usetex": False, "svg.hashsalt": "acphys"})
+
+
+@dataclass(frozen=True)
+class PlotFrame:
+    """The frame a picture's x and y are in: metres from ``origin`` (landblock-global metres).
+
+    ``blocks`` is ``(x0, x1, y0, y1)``, the landblock columns and rows the picture spans
+    (inclusive), and ``origin`` the south-west corner of landblock ``(x0, y0)``: for a run in one
+    landblock, its own local metres. None when the paths reach past the map (a hand-made trace):
+    then the frame is landblock-global.
+    """
+
+    origin: tuple[float, float] = (0.0, 0.0)
+    blocks: tuple[int, int, int, int] | None = None
+
+    @property
+    def single(self) -> bool:
+        return (
+            self.blocks is not None and self.blocks[0] == self.blocks[1] and self.blocks[2] == self.blocks[3]
+        )
+
+    def describe(self) -> str:
+        """What an axis label says of the frame."""
+        if self.blocks is None:
+            return "landblock-global"
+        block = f"0x{self.blocks[0]:02X}{self.blocks[2]:02X}"
+        return f"in landblock {block}" if self.single else f"from {block}'s south-west corner"
+
+
+#: The most landblock seams a panel draws along each axis, and the most landblocks it labels.
+MAX_SEAMS = 40
+MAX_BLOCK_LABELS = 64
+
+
+def plot_frame(selected: Sequence[BodyPath], world: WorldSketch | None = None) -> PlotFrame:
+    """The frame for ``selected`` over ``world``: the landblocks they reach (see :class:`PlotFrame`)."""
+    xs = [value for path in selected if len(path) for value in (min(path.x), max(path.x))]
+    ys = [value for path in selected if len(path) for value in (min(path.y), max(path.y))]
+    if world is not None:
+        for terrain in world.terrain:
+            x, y = terrain.corner
+            xs.append(x)
+            ys.append(y)
+        for shape in world.shapes:
+            xs.append(shape.anchor[0])
+            ys.append(shape.anchor[1])
+    if not xs:
+        return PlotFrame()
+    x0, x1 = math.floor(min(xs) / BLOCK_LENGTH), math.floor(max(xs) / BLOCK_LENGTH)
+    y0, y1 = math.floor(min(ys) / BLOCK_LENGTH), math.floor(max(ys) / BLOCK_LENGTH)
+    if not all(0 <= value <= 0xFF for value in (x0, x1, y0, y1)):
+        return PlotFrame()
+    return PlotFrame((x0 * BLOCK_LENGTH, y0 * BLOCK_LENGTH), (x0, x1, y0, y1))
+
+
+def body_colours(count: int) -> list[Any]:
+    """A colour per body: tab10 up to 10 bodies, tab20 up to 20, past that evenly along a
+    continuous colormap (neighbours in the run order still differ)."""
+    from matplotlib import colormaps
+
+    if count <= 10:
+        return [colormaps["tab10"](index) for index in range(count)]
+    if count <= 20:
+        return [colormaps["tab20"](index) for index in range(count)]
+    import numpy as np
+
+    table = colormaps["turbo"](np.linspace(0.0, 1.0, 256))  # interpolated: past 256 bodies still distinct
+    where = np.linspace(0.05, 0.95, count) * 255
+    channels = [np.interp(where, np.arange(256), table[:, channel]) for channel in range(4)]
+    return [tuple(float(value) for value in rgba) for rgba in zip(*channels, strict=True)]
 
 
 def make_figure(
-    paths: dict[str, BodyPath], bodies: Sequence[str] | None = None, view: str | None = None, title: str = ""
+    paths: dict[str, BodyPath],
+    bodies: Sequence[str] | None = None,
+    view: str | None = None,
+    title: str = "",
+    world: WorldSketch | None = None,
 ) -> Any:
     """The matplotlib ``Figure`` :func:`write_plot` saves (on an Agg canvas; pyplot is not used).
 
-    No text of the figure is read as maths, so a body named ``$x^$`` is drawn as it is named.
+    The paths are drawn in the frame of :func:`plot_frame` over ``world``'s terrain (contours,
+    water), objects, buildings, rooms and doorways; each body's start is a circle and its end a
+    square. No text of the figure is read as maths, so a body named ``$x^$`` is drawn as it is
+    named.
     """
     if view is not None and view not in VIEWS:
         raise PlotError(f"--view must be one of {', '.join(VIEWS)}, got {view!r}")
@@ -504,68 +697,592 @@ def make_figure(
 
     with _user_text_is_plain():
         views = DEFAULT_VIEWS if view is None else (view,)
-        figure = Figure(figsize=(6.5 * len(views), 6.0), dpi=100, layout="constrained")
+        figure = Figure(figsize=(6.5 * len(views) + 1.5, 7.0), dpi=100, layout="constrained")
         FigureCanvasAgg(figure)
         axes = figure.subplots(1, len(views), squeeze=False)[0]
-        colours = [f"C{index % 10}" for index in range(len(selected))]
+        selected = [path for path in selected if len(path)]
+        colours = body_colours(len(selected))
+        frame = plot_frame(selected, world)
+        drawn: set[str] = set()
         for ax, panel in zip(axes, views, strict=True):
-            _draw_panel(ax, panel, selected, colours)
-        _legend(figure, selected, colours)
-        if title:
-            figure.suptitle(shown_name(title, limit=2 * SHOWN_NAME))
+            if panel == "top":
+                drawn |= _draw_top(ax, selected, colours, frame, world)
+            elif panel == "side":
+                drawn |= _draw_side(ax, selected, colours, frame, world)
+            else:
+                drawn |= _draw_height(ax, selected, colours)
+        _legends(figure, selected, colours, drawn)
+        figure.suptitle(_title(title, selected, frame), fontsize="large")
     return figure
 
 
-def _panel_data(panel: str, points: Points) -> tuple[array[float], array[float]]:
+def _title(title: str, selected: Sequence[BodyPath], frame: PlotFrame) -> str:
+    """The scenario's name, and under it the time span, the bodies and the landblocks."""
+    start = min(path.t[0] for path in selected)
+    end = max(path.t[-1] for path in selected)
+    count = f"{len(selected):,} {'body' if len(selected) == 1 else 'bodies'}"
+    where = ""
+    if frame.blocks is not None:
+        x0, x1, y0, y1 = frame.blocks
+        where = (
+            f"landblock 0x{x0:02X}{y0:02X}"
+            if frame.single
+            else f"landblocks 0x{x0:02X}{y0:02X} to 0x{x1:02X}{y1:02X}"
+        )
+    span = f"t {_number_text(start)} to {_number_text(end)} s"
+    name = shown_name(title, limit=2 * SHOWN_NAME) if title else "(unnamed)"
+    return f"{name}\n" + " · ".join(part for part in (span, count, where) if part)
+
+
+def _number_text(value: float) -> str:
+    return f"{value:.2f}" if abs(value) < PLAIN_TICKS else f"{value:.3g}"
+
+
+# -- panels -----------------------------------------------------------------------------------
+
+#: Styles of the world's things: face colour, edge colour, edge width, line colour and width
+#: (a face seen edge-on is a line), and the stacking order.
+_SHAPE_STYLES: dict[str, dict[str, Any]] = {
+    "building": {
+        "face": "none",
+        "edge": "#757575",
+        "width": 0.8,
+        "line": "#616161",
+        "line_width": 1.2,
+        "z": 1.2,
+    },
+    "room": {
+        "face": "#ecdcc0",
+        "edge": "#8d6e63",
+        "width": 0.6,
+        "line": "#5d4037",
+        "line_width": 1.6,
+        "z": 1.3,
+    },
+    "object": {
+        "face": "#b8b8b8",
+        "edge": "#4a4a4a",
+        "width": 0.7,
+        "line": "#4a4a4a",
+        "line_width": 1.0,
+        "z": 1.5,
+    },
+    "doorway": {
+        "face": "#ffb74d",
+        "edge": "#e65100",
+        "width": 0.8,
+        "line": "#ef6c00",
+        "line_width": 2.6,
+        "z": 1.6,
+    },
+}
+_GROUND = "#f6f3ea"
+_GROUND_EDGE = "#a1887f"
+_CONTOUR = "#8d6e63"
+_WATER = "#4f8fd6"
+#: The shading of the ground by height (the pale part of this colormap): pale yellow low, light brown high.
+_ELEVATION = "YlOrBr"
+#: The opacity of the world's faces seen from the south.
+SIDE_ALPHA = 0.3
+#: How many of the world's things a panel names (more would hide the paths).
+MAX_SHAPE_LABELS = 40
+#: Below this spread of heights (m) the ground is flat: no contours.
+FLAT = 0.01
+
+
+def _shifted(points: Points, panel: str, frame: PlotFrame) -> tuple[Any, Any]:
+    """A series' coordinates in a panel, in the picture's frame."""
+    import numpy as np
+
     if panel == "top":
-        return points.x, points.y
+        return np.asarray(points.x) - frame.origin[0], np.asarray(points.y) - frame.origin[1]
     if panel == "side":
-        return points.x, points.z
-    return points.t, points.z
+        return np.asarray(points.x) - frame.origin[0], np.asarray(points.z)
+    return np.asarray(points.t), np.asarray(points.z)
 
 
-def _draw_panel(ax: Any, panel: str, selected: list[BodyPath], colours: list[str]) -> None:
+def _draw_paths(
+    ax: Any, panel: str, selected: list[BodyPath], colours: list[Any], frame: PlotFrame
+) -> set[str]:
+    """The paths, their events, where each starts (a circle) and ends (a square); returns the
+    event kinds drawn."""
     import numpy as np
     from matplotlib.collections import LineCollection
 
+    data = [_shifted(path, panel, frame) for path in selected]
+    width = 1.6 if len(selected) <= LEGEND_BODIES else 1.0
     if len(selected) <= LEGEND_BODIES:
-        for path, colour in zip(selected, colours, strict=True):
-            ax.plot(*_panel_data(panel, path), color=colour, linewidth=1.5, label=shown_name(path.name))
+        for path, (xs, ys), colour in zip(selected, data, colours, strict=True):
+            ax.plot(xs, ys, color=colour, linewidth=width, label=shown_name(path.name), zorder=3)
     else:  # one collection: a Line2D per body would take minutes for thousands of bodies
-        lines = [np.column_stack(_panel_data(panel, path)) for path in selected]
-        ax.add_collection(LineCollection(lines, colors=colours, linewidths=1.5))
-        ax.autoscale_view()
-    starts = [(xs[0], ys[0]) for xs, ys in (_panel_data(panel, path) for path in selected)]
-    ax.scatter(*zip(*starts, strict=True), marker="o", s=25, c=colours, zorder=3)  # where each starts
-    for kind, (_, marker, edge, size) in EVENT_MARKERS.items():
-        marks = [_panel_data(panel, path.marks[kind]) for path in selected if kind in path.marks]
+        lines = [np.column_stack(xy) for xy in data]
+        ax.add_collection(LineCollection(lines, colors=colours, linewidths=width, zorder=3))
+    kinds: set[str] = set()
+    for kind, (_, marker, colour, size) in EVENT_MARKERS.items():
+        marks = [_shifted(path.marks[kind], panel, frame) for path in selected if kind in path.marks]
         if marks:
+            kinds.add(kind)
+            line_marker = marker in ("x", "+")
             ax.scatter(
                 np.concatenate([xs for xs, _ in marks]),
                 np.concatenate([ys for _, ys in marks]),
                 marker=marker,
                 s=size,
-                facecolors="none" if kind != "collision" else "red",
-                edgecolors=edge,
-                linewidths=1.0,
-                zorder=3,
+                c=colour,
+                alpha=EVENT_ALPHA,
+                linewidths=1.0 if line_marker else 0.4,
+                **({} if line_marker else {"edgecolors": "white"}),
+                zorder=4,
+                label=f"_{kind}",
             )
+    # The start circle is larger than the end square: a body that ends where it started shows both.
+    few = len(selected) <= LEGEND_BODIES
+    size, edge = (30, 0.7) if few else (12, 0.25)
+    starts = np.array([(xs[0], ys[0]) for xs, ys in data])
+    ends = np.array([(xs[-1], ys[-1]) for xs, ys in data])
+    ax.scatter(
+        starts[:, 0],
+        starts[:, 1],
+        marker="o",
+        s=2.2 * size,
+        c=colours,
+        edgecolors="black",
+        linewidths=edge,
+        zorder=5,
+        label="_start",
+    )
+    ax.scatter(
+        ends[:, 0],
+        ends[:, 1],
+        marker="s",
+        s=size,
+        c=colours,
+        edgecolors="black",
+        linewidths=edge,
+        zorder=5,
+        label="_end",
+    )
+    return kinds
+
+
+def _draw_top(
+    ax: Any, selected: list[BodyPath], colours: list[Any], frame: PlotFrame, world: WorldSketch | None
+) -> set[str]:
+    """The paths from above, over the ground, water and the world's things; returns what was drawn."""
+    drawn = _draw_paths(ax, "top", selected, colours, frame)
+    xlim, ylim = _top_limits(selected, frame, world)
+    if world is not None:
+        drawn |= _draw_terrain(ax, world, frame)
+        drawn |= _draw_shapes(ax, world, frame, (0, 1), xlim, ylim)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    ax.set_aspect("equal", adjustable="box")
+    _seams(ax, frame, xlim, ylim, horizontal=True)
     _tick_labels(ax)
-    ax.grid(True, color="0.9")
-    if panel == "top":
-        ax.set_title("from above")
-        ax.set_xlabel("x: east (m, landblock-global)")
-        ax.set_ylabel("y: north (m, landblock-global)")
-        ax.set_aspect("equal", adjustable="datalim")
-        _landblock_seams(ax, selected)
-    elif panel == "side":
-        ax.set_title("from the south")
-        ax.set_xlabel("x: east (m, landblock-global)")
-        ax.set_ylabel("z: height (m)")
-    else:
-        ax.set_title("height over time")
-        ax.set_xlabel("t: physics time (s)")
-        ax.set_ylabel("z: height (m)")
+    ax.grid(True, color="0.85", linewidth=0.5, zorder=0)
+    ax.set_axisbelow(True)
+    ax.set_title("from above")
+    ax.set_xlabel(f"x: east (m, {frame.describe()})")
+    ax.set_ylabel(f"y: north (m, {frame.describe()})")
+    return drawn
+
+
+def _draw_side(
+    ax: Any, selected: list[BodyPath], colours: list[Any], frame: PlotFrame, world: WorldSketch | None
+) -> set[str]:
+    """The paths from the south (east against height) over the ground's profile and the world's things."""
+    drawn = _draw_paths(ax, "side", selected, colours, frame)
+    xlim, _ = _top_limits(selected, frame, world, square=False)
+    zs = [value for path in selected for value in (min(path.z), max(path.z))]
+    if world is not None:
+        drawn |= _draw_profile(ax, world, frame, selected, xlim, zs)
+        drawn |= _draw_shapes(ax, world, frame, (0, 2), xlim, None, zs)
+    zlim = _padded(min(zs), max(zs), minimum=2.0)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*zlim)
+    _seams(ax, frame, xlim, zlim, horizontal=False)
+    _tick_labels(ax)
+    ax.grid(True, color="0.85", linewidth=0.5)
+    ax.set_axisbelow(True)
+    ax.set_title("from the south")
+    ax.set_xlabel(f"x: east (m, {frame.describe()})")
+    ax.set_ylabel("z: height (m)")
+    return drawn
+
+
+def _draw_height(ax: Any, selected: list[BodyPath], colours: list[Any]) -> set[str]:
+    """Height over time."""
+    drawn = _draw_paths(ax, "height", selected, colours, PlotFrame())
+    _tick_labels(ax)
+    ax.grid(True, color="0.85", linewidth=0.5)
+    ax.set_axisbelow(True)
+    ax.set_title("height over time")
+    ax.set_xlabel("t: physics time (s)")
+    ax.set_ylabel("z: height (m)")
+    return drawn
+
+
+def _padded(low: float, high: float, minimum: float) -> tuple[float, float]:
+    """``low`` to ``high`` with a margin, at least ``minimum`` wide."""
+    span = high - low
+    pad = max(0.06 * span, (minimum - span) / 2 if span < minimum else 0.0, 0.5)
+    return low - pad, high + pad
+
+
+def _top_limits(
+    selected: Sequence[BodyPath], frame: PlotFrame, world: WorldSketch | None, square: bool = True
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The x and y a panel shows, in the picture's frame: the paths and the world's things with a
+    margin, at least half as tall as wide (and wide as tall), within the landblocks when they are."""
+    xs = [value for path in selected for value in (min(path.x), max(path.x))]
+    ys = [value for path in selected for value in (min(path.y), max(path.y))]
+    if world is not None:
+        for shape in world.shapes:
+            low, high = shape.bounds()
+            xs += [float(low[0]), float(high[0])]
+            ys += [float(low[1]), float(high[1])]
+    x0, x1 = min(xs) - frame.origin[0], max(xs) - frame.origin[0]
+    y0, y1 = min(ys) - frame.origin[1], max(ys) - frame.origin[1]
+    xlim, ylim = _padded(x0, x1, minimum=6.0), _padded(y0, y1, minimum=6.0)
+    if square:
+        xlim, ylim = _at_least_half(xlim, ylim), _at_least_half(ylim, xlim)
+    if frame.blocks is not None:
+        bx0, bx1, by0, by1 = frame.blocks
+        area_x = (0.0, (bx1 - bx0 + 1) * BLOCK_LENGTH)
+        area_y = (0.0, (by1 - by0 + 1) * BLOCK_LENGTH)
+        if area_x[0] <= x0 and x1 <= area_x[1]:
+            xlim = (max(xlim[0], area_x[0]), min(xlim[1], area_x[1]))
+        if area_y[0] <= y0 and y1 <= area_y[1]:
+            ylim = (max(ylim[0], area_y[0]), min(ylim[1], area_y[1]))
+    return xlim, ylim
+
+
+def _at_least_half(limits: tuple[float, float], other: tuple[float, float]) -> tuple[float, float]:
+    span, wanted = limits[1] - limits[0], (other[1] - other[0]) / 2
+    if span >= wanted:
+        return limits
+    middle = (limits[0] + limits[1]) / 2
+    return middle - wanted / 2, middle + wanted / 2
+
+
+def _draw_terrain(ax: Any, world: WorldSketch, frame: PlotFrame) -> set[str]:
+    """Each landblock's ground (a pale square), its height contours (labelled in metres) and its
+    water (cells wholly under water dark, partly light)."""
+    import numpy as np
+    from matplotlib import colormaps
+    from matplotlib.collections import PolyCollection
+    from matplotlib.colors import ListedColormap, Normalize, to_rgba
+    from matplotlib.patches import Rectangle
+    from matplotlib.ticker import MaxNLocator
+    from matplotlib.tri import Triangulation
+
+    drawn: set[str] = set()
+    squares, water, shades = [], [], []
+    size = CELL_LENGTH
+    for terrain in world.terrain:
+        x, y = terrain.corner[0] - frame.origin[0], terrain.corner[1] - frame.origin[1]
+        squares.append(
+            [(x, y), (x + BLOCK_LENGTH, y), (x + BLOCK_LENGTH, y + BLOCK_LENGTH), (x, y + BLOCK_LENGTH)]
+        )
+        for index, kind in enumerate(terrain.water):
+            if kind != WaterType.NOT_WATER:
+                cx = x + (index // CELLS_PER_BLOCK) * size
+                cy = y + (index % CELLS_PER_BLOCK) * size
+                water.append([(cx, cy), (cx + size, cy), (cx + size, cy + size), (cx, cy + size)])
+                shades.append(to_rgba(_WATER, 0.55 if kind == WaterType.ENTIRELY_WATER else 0.22))
+    if squares:
+        ground = PolyCollection(
+            squares, facecolors=_GROUND, edgecolors=_GROUND_EDGE, linewidths=0.6, zorder=0.5, gid="ground"
+        )
+        ax.add_collection(ground)
+        drawn.add("ground")
+    if water:
+        ax.add_collection(
+            PolyCollection(water, facecolors=shades, edgecolors="none", zorder=0.9, gid="water")
+        )
+        drawn.add("water")
+    heights = np.concatenate([terrain.z for terrain in world.terrain]) if world.terrain else np.zeros(0)
+    if heights.size and heights.max() - heights.min() > FLAT:
+        levels = MaxNLocator(nbins=12, steps=[1, 2, 2.5, 5, 10]).tick_values(heights.min(), heights.max())
+        levels = levels[(levels > heights.min()) & (levels < heights.max())]
+        margin = 1e-3 * (heights.max() - heights.min())  # ground flat at the lowest or highest is shaded too
+        bands = [heights.min() - margin, *levels, heights.max() + margin]
+        if levels.size:
+            elevation = ListedColormap(
+                colormaps[_ELEVATION](np.linspace(0.0, 0.45, 64)), name="acphys-ground"
+            )
+            norm = Normalize(heights.min(), heights.max())
+            for terrain in world.terrain:
+                x, y = terrain.corner[0] - frame.origin[0], terrain.corner[1] - frame.origin[1]
+                if terrain.z.max() - terrain.z.min() <= FLAT:  # a flat landblock: one shade, no contour
+                    square = Rectangle((x, y), BLOCK_LENGTH, BLOCK_LENGTH, zorder=0.6, gid="elevation")
+                    square.set(facecolor=elevation(norm(terrain.z.mean())), edgecolor="none")
+                    ax.add_patch(square)
+                    continue
+                mesh = Triangulation(
+                    terrain.x - frame.origin[0], terrain.y - frame.origin[1], terrain.triangles
+                )
+                shading = ax.tricontourf(
+                    mesh, terrain.z, levels=bands, cmap=elevation, norm=norm, zorder=0.6, antialiased=False
+                )
+                shading.set_gid("elevation")
+                contours = ax.tricontour(
+                    mesh, terrain.z, levels=levels, colors=_CONTOUR, linewidths=0.7, alpha=0.8, zorder=0.8
+                )
+                contours.set_gid("contours")
+                if len(world.terrain) <= MAX_BLOCK_LABELS // 4:
+                    ax.clabel(contours, fontsize=6.5, fmt="%g m", inline=True, inline_spacing=2)
+            drawn.add("contours")
+    return drawn
+
+
+def _heights_at(world: WorldSketch, xs: Any, ys: Any) -> Any:
+    """The ground's height at global ``(xs, ys)`` (NaN where there is no terrain)."""
+    import numpy as np
+    from matplotlib.tri import LinearTriInterpolator, Triangulation
+
+    heights = np.full(np.shape(xs), np.nan)
+    for terrain in world.terrain:
+        inside = (
+            (xs >= terrain.corner[0])
+            & (xs <= terrain.corner[0] + BLOCK_LENGTH)
+            & (ys >= terrain.corner[1])
+            & (ys <= terrain.corner[1] + BLOCK_LENGTH)
+        )
+        if inside.any():
+            mesh = Triangulation(terrain.x, terrain.y, terrain.triangles)
+            found = LinearTriInterpolator(mesh, terrain.z)(xs[inside], ys[inside])
+            heights[inside] = np.ma.filled(found, np.nan)
+    return heights
+
+
+def _draw_profile(
+    ax: Any,
+    world: WorldSketch,
+    frame: PlotFrame,
+    selected: list[BodyPath],
+    xlim: tuple[float, float],
+    zs: list[float],
+) -> set[str]:
+    """The ground seen from the south over the strip of y the paths cover: the band between its
+    lowest and highest there, with its top drawn."""
+    import numpy as np
+
+    if not world.terrain:
+        return set()
+    low_y = min(min(path.y) for path in selected)
+    high_y = max(max(path.y) for path in selected)
+    xs = np.linspace(xlim[0], xlim[1], 241) + frame.origin[0]
+    strip = np.linspace(low_y, high_y, 9 if high_y > low_y else 1)
+    grid_x, grid_y = np.meshgrid(xs, strip)
+    heights = _heights_at(world, grid_x, grid_y)
+    if np.isnan(heights).all():
+        return set()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # columns with no terrain: NaN
+        low, high = np.nanmin(heights, axis=0), np.nanmax(heights, axis=0)
+    x = xs - frame.origin[0]
+    ax.fill_between(
+        x,
+        np.nanmin(low) - 1.0 if np.isfinite(low).any() else 0.0,
+        high,
+        color=_GROUND,
+        edgecolor="none",
+        zorder=0.5,
+        gid="ground",
+    )
+    ax.fill_between(x, low, high, color=_GROUND_EDGE, alpha=0.35, edgecolor="none", zorder=0.6)
+    ax.plot(x, high, color=_GROUND_EDGE, linewidth=1.0, zorder=0.7, label="_ground")
+    zs += [float(np.nanmin(low)), float(np.nanmax(high))]
+    return {"ground"}
+
+
+def _project(face: Any, dims: tuple[int, int]) -> tuple[Any, bool]:
+    """A face seen along the third axis: its outline, or (edge-on) the segment it covers."""
+    import numpy as np
+
+    flat = face[:, dims]
+    x, y = flat[:, 0], flat[:, 1]
+    area = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+    if area > 1e-4:
+        return flat, True
+    distances = ((flat[:, None, :] - flat[None, :, :]) ** 2).sum(axis=-1)
+    i, j = np.unravel_index(int(np.argmax(distances)), distances.shape)
+    return flat[[i, j]], False
+
+
+def _draw_shapes(
+    ax: Any,
+    world: WorldSketch,
+    frame: PlotFrame,
+    dims: tuple[int, int],
+    xlim: tuple[float, float],
+    ylim: tuple[float, float] | None,
+    zs: list[float] | None = None,
+) -> set[str]:
+    """The world's things seen from above (``dims`` (0, 1)) or from the south ((0, 2)): faces
+    filled, faces seen edge-on as lines, spheres and cylinders as circles (and from the south,
+    cylinders as rectangles); objects and rooms named."""
+    import numpy as np
+    from matplotlib.collections import LineCollection, PatchCollection, PolyCollection
+    from matplotlib.colors import to_rgba
+    from matplotlib.patches import Circle, Rectangle
+
+    shift = np.array([frame.origin[0] if d == 0 else frame.origin[1] if d == 1 else 0.0 for d in dims])
+    drawn: set[str] = set()
+    labels = 0
+    top = dims == (0, 1)
+    for kind in SHAPE_KINDS:
+        shapes = world.of_kind(kind)
+        if not shapes:
+            continue
+        style = _SHAPE_STYLES[kind]
+        polygons, lines, patches, anchors = [], [], [], []
+        for shape in shapes:
+            for face in shape.faces:
+                outline, filled = _project(face, dims)
+                (polygons if filled else lines).append(outline - shift)
+            for x, y, z, r in shape.spheres:
+                centre = (x, y) if top else (x, z)
+                patches.append(Circle((centre[0] - shift[0], centre[1] - shift[1]), r))
+            for x, y, z, r, h in shape.cylinders:
+                if top:
+                    patches.append(Circle((x - shift[0], y - shift[1]), r))
+                else:
+                    patches.append(Rectangle((x - r - shift[0], z), 2 * r, h))
+            if shape.empty:
+                anchor = (shape.anchor[0], shape.anchor[1] if top else shape.anchor[2])
+                anchors.append((anchor[0] - shift[0], anchor[1] - shift[1]))
+            if zs is not None:
+                low, high = shape.bounds()
+                zs += [float(low[2]), float(high[2])]
+        z = style["z"]
+        # From the south, faces one behind another: translucent, so the nearer hide nothing.
+        face = style["face"] if top or style["face"] == "none" else to_rgba(style["face"], SIDE_ALPHA)
+        if polygons:
+            ax.add_collection(
+                PolyCollection(
+                    polygons,
+                    facecolors=face,
+                    edgecolors=style["edge"],
+                    linewidths=style["width"],
+                    zorder=z,
+                    gid=kind,
+                )
+            )
+        if lines:
+            ax.add_collection(
+                LineCollection(
+                    lines,
+                    colors=style["line"],
+                    linewidths=style["line_width"],
+                    zorder=z + 0.01,
+                    gid=f"{kind} lines",
+                )
+            )
+        if patches:
+            ax.add_collection(
+                PatchCollection(
+                    patches,
+                    facecolors=face,
+                    edgecolors=style["edge"],
+                    linewidths=style["width"],
+                    zorder=z,
+                    gid=kind,
+                )
+            )
+        if anchors:
+            ax.scatter(*np.array(anchors).T, marker="+", s=30, c=style["edge"], zorder=z, label=f"_{kind}")
+        drawn.add(kind)
+        if top and kind in ("object", "room"):
+            labels += _name_shapes(ax, shapes, shift, xlim, ylim, MAX_SHAPE_LABELS - labels)
+    return drawn
+
+
+def _name_shapes(
+    ax: Any,
+    shapes: list[ShapeSketch],
+    shift: Any,
+    xlim: tuple[float, float],
+    ylim: tuple[float, float] | None,
+    room: int,
+) -> int:
+    """Name the shapes inside the panel at their middles (from above), at most ``room`` of them."""
+    inside = []
+    for shape in shapes:
+        low, high = shape.bounds()
+        x = (low[0] + high[0]) / 2 - shift[0]
+        # A room's name near its north wall, out of the way of a path through its doors.
+        y = low[1] + (0.8 if shape.kind == "room" else 0.5) * (high[1] - low[1]) - shift[1]
+        if xlim[0] <= x <= xlim[1] and (ylim is None or ylim[0] <= y <= ylim[1]):
+            inside.append((shape, x, y))
+    if len(inside) > room:
+        return 0
+    for shape, x, y in inside:
+        ax.annotate(
+            shown_name(shape.name, limit=24),
+            (x, y),
+            fontsize=6.5,
+            color="0.15",
+            ha="center",
+            va="center",
+            zorder=2.5,
+            annotation_clip=True,
+            bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.6},
+        )
+    return len(inside)
+
+
+def _seams(
+    ax: Any, frame: PlotFrame, xlim: tuple[float, float], ylim: tuple[float, float], horizontal: bool
+) -> None:
+    """Dashed lines on the landblock edges inside the panel, each landblock named (from above),
+    or each column of landblocks (from the south)."""
+    if frame.blocks is None or frame.single:
+        return
+    bx0, bx1, by0, by1 = frame.blocks
+    if bx1 - bx0 > MAX_SEAMS or by1 - by0 > MAX_SEAMS:
+        return
+    style = {"color": "0.45", "linestyle": (0, (6, 4)), "linewidth": 0.9, "zorder": 2}
+    columns = [(bx, bx - bx0) for bx in range(bx0, bx1 + 1)]
+    rows = [(by, by - by0) for by in range(by0, by1 + 1)]
+    for _, offset in columns[1:]:
+        if xlim[0] < offset * BLOCK_LENGTH < xlim[1]:
+            ax.axvline(offset * BLOCK_LENGTH, **style)
+    if horizontal:
+        for _, offset in rows[1:]:
+            if ylim[0] < offset * BLOCK_LENGTH < ylim[1]:
+                ax.axhline(offset * BLOCK_LENGTH, **style)
+    text = {
+        "fontsize": 7,
+        "color": "0.3",
+        "zorder": 2,
+        "bbox": {"boxstyle": "round,pad=0.2", "facecolor": "white", "edgecolor": "0.6", "alpha": 0.8},
+    }
+    labels = 0
+    for bx, column in columns:
+        left = max(column * BLOCK_LENGTH, xlim[0])
+        if left >= min((column + 1) * BLOCK_LENGTH, xlim[1]):
+            continue
+        if not horizontal:
+            ax.text(
+                left, 0.99, f" 0x{bx:02X}··", transform=ax.get_xaxis_transform(), va="top", ha="left", **text
+            )
+            continue
+        for by, row in rows:
+            bottom = max(row * BLOCK_LENGTH, ylim[0])
+            if bottom >= min((row + 1) * BLOCK_LENGTH, ylim[1]) or labels == MAX_BLOCK_LABELS:
+                continue
+            labels += 1
+            ax.annotate(
+                f"0x{bx:02X}{by:02X}",
+                (left, bottom),
+                xytext=(3, 3),
+                textcoords="offset points",
+                va="bottom",
+                ha="left",
+                **text,
+            )
 
 
 #: Tick labels are plain numbers (no offset, no exponent) below this magnitude: a landblock-global
@@ -579,30 +1296,73 @@ def _tick_labels(ax: Any) -> None:
         ax.ticklabel_format(axis=axis, useOffset=False, style="plain" if plain else "sci")
 
 
-def _landblock_seams(ax: Any, selected: list[BodyPath]) -> None:
-    """Dashed lines on the landblock edges the paths reach (at most a few dozen)."""
-    for values, draw in (([p.x for p in selected], ax.axvline), ([p.y for p in selected], ax.axhline)):
-        low = math.floor(min(map(min, values)) / BLOCK_LENGTH)
-        high = math.ceil(max(map(max, values)) / BLOCK_LENGTH)
-        if high - low <= 40:
-            for edge in range(low + 1, high):
-                draw(edge * BLOCK_LENGTH, color="0.6", linestyle="--", linewidth=0.8)
+_KEY_LABELS = {
+    "ground": ("patch", {"facecolor": _GROUND, "edgecolor": _GROUND_EDGE}, "ground"),
+    "contours": ("line", {"color": _CONTOUR, "linewidth": 0.8}, "height contour"),
+    "water": ("patch", {"facecolor": _WATER, "alpha": 0.55, "edgecolor": "none"}, "water (paler: in part)"),
+    "building": ("patch", {"facecolor": "none", "edgecolor": _SHAPE_STYLES["building"]["edge"]}, "building"),
+    "room": (
+        "patch",
+        {"facecolor": _SHAPE_STYLES["room"]["face"], "edgecolor": _SHAPE_STYLES["room"]["line"]},
+        "room",
+    ),
+    "object": (
+        "patch",
+        {"facecolor": _SHAPE_STYLES["object"]["face"], "edgecolor": _SHAPE_STYLES["object"]["edge"]},
+        "object",
+    ),
+    "doorway": ("line", {"color": _SHAPE_STYLES["doorway"]["line"], "linewidth": 2.6}, "doorway"),
+}
 
 
-def _legend(figure: Any, selected: list[BodyPath], colours: list[str]) -> None:
+def legend_entries(count: int) -> list[int]:
+    """Which of ``count`` bodies the legend names, by index: all up to :data:`LEGEND_BODIES`, past
+    that :data:`LEGEND_BODIES` of them spread evenly from the first to the last."""
+    if count <= LEGEND_BODIES:
+        return list(range(count))
+    return sorted({round(k * (count - 1) / (LEGEND_BODIES - 1)) for k in range(LEGEND_BODIES)})
+
+
+def _legends(figure: Any, selected: list[BodyPath], colours: list[Any], drawn: set[str]) -> None:
+    """The bodies' legend (right of the panels: every name up to :data:`LEGEND_BODIES`, in columns
+    of :data:`LEGEND_ROWS`; past that as many spread evenly over the run order, so their colours
+    span the colormap, its title saying how many are not named), and the key (below): start,
+    end, each event kind and each kind of world thing drawn."""
     from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
-    handles = []
-    if len(selected) <= LEGEND_BODIES:
-        handles += [
-            Line2D([], [], color=c, label=shown_name(p.name)) for p, c in zip(selected, colours, strict=True)
-        ]
-    handles.append(Line2D([], [], marker="o", color="0.4", linestyle="", label="start"))
-    seen = {kind for path in selected for kind in path.marks}
-    for kind, (label, marker, edge, _) in EVENT_MARKERS.items():
-        if kind in seen:
-            face = "red" if kind == "collision" else "none"
-            handles.append(
-                Line2D([], [], marker=marker, color=face, markeredgecolor=edge, linestyle="", label=label)
+    count = len(selected)
+    shown = legend_entries(count)
+    handles = [
+        Line2D([], [], color=colours[index], linewidth=2.0, label=shown_name(selected[index].name))
+        for index in shown
+    ]
+    title = f"{count:,} {'body' if count == 1 else 'bodies'}"
+    if count > len(shown):
+        title += f": {len(shown)} named\n(spread over the run order),\n{count - len(shown):,} not named"
+    columns = max(1, math.ceil(len(handles) / LEGEND_ROWS))
+    figure.legend(
+        handles=handles,
+        title=title,
+        fontsize="small",
+        title_fontsize="small",
+        loc="outside right upper",
+        ncols=columns,
+    )
+    key = [
+        Line2D([], [], marker="o", color="0.6", markeredgecolor="black", linestyle="", label="start"),
+        Line2D([], [], marker="s", color="0.6", markeredgecolor="black", linestyle="", label="end"),
+    ]
+    for kind, (label, marker, colour, _) in EVENT_MARKERS.items():
+        if kind in drawn:
+            key.append(
+                Line2D([], [], marker=marker, color=colour, linestyle="", alpha=EVENT_ALPHA, label=label)
             )
-    figure.legend(handles=handles, fontsize="small", loc="outside right upper")
+    for item, (how, style, label) in _KEY_LABELS.items():
+        if item in drawn:
+            key.append(
+                Patch(label=label, **style) if how == "patch" else Line2D([], [], label=label, **style)
+            )
+    figure.legend(
+        handles=key, fontsize="small", loc="outside lower center", ncols=min(len(key), 8), frameon=False
+    )

@@ -527,6 +527,23 @@ class BSPTree(BSPTreeCollisions):
         """
         return self.root_node.sphere
 
+    def polygons(self) -> list[BSPPolygon]:
+        """Every polygon the tree's nodes hold, once each (leaves share a solid's faces), in
+        depth-first order, positive side first; without recursion. Not retail: for pictures."""
+        seen: set[int] = set()
+        found: list[BSPPolygon] = []
+        stack: list[BSPNode | None] = [self.root_node]
+        while stack:
+            node = stack.pop()
+            if node is None:
+                continue
+            for poly in node.polys:
+                if id(poly) not in seen:
+                    seen.add(id(poly))
+                    found.append(poly)
+            stack += [node.neg_node, node.pos_node]
+        return found
+
     def point_inside_cell_bsp(self, origin: Vector3) -> bool:
         """Retail: BSPTREE::point_inside_cell_bsp @ 0x005398C0 (acclient.c:360730)"""
         return self.root_node.point_inside_cell_bsp(origin)

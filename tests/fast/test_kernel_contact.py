@@ -51,15 +51,15 @@ def test_bodies_pushing_into_each_other_slide_in_the_kernel(tmp_path: Path) -> N
     result = compare_engines(lambda engine: parse_scenario(MEETINGS, "<meetings>", engine=engine), tmp_path)
     assert result.identical, result.divergence
     assert result.touching >= 10  # pressing into the row, slid off one stander after another
-    assert result.reference_steps < 0.02 * result.kernel_steps  # record endings, climbs
+    assert result.reference_steps < 0.02 * result.kernel_steps  # climbs, a motion waiting
 
 
 def test_first_touches_are_reported_in_the_kernel(tmp_path: Path) -> None:
     """A first touch gives each body a ``collision:NAME`` event (``report_object_collision``,
     acclient.c:320227): the kernel logs them and the engine names them in the trace, the mover's in
-    its own row and the other's in that body's next. What the kernel hands back in a meeting: a
-    record ending (reported to both), the climbs it leaves (a taller body's sphere 0 meeting a lower
-    one it can step onto), and a motion waiting at the start; nothing else."""
+    its own row and the other's in that body's next. What the kernel hands back in a meeting: the
+    climbs it leaves (a taller body's sphere 0 meeting a lower one it can step onto) and a motion
+    waiting at the start; nothing else."""
     result = compare_engines(lambda engine: parse_scenario(MEETINGS, "<meetings>", engine=engine), tmp_path)
     assert result.identical, result.divergence
     reports = [
@@ -72,8 +72,28 @@ def test_first_touches_are_reported_in_the_kernel(tmp_path: Path) -> None:
     sim = parse_scenario(MEETINGS, "<meetings>", engine="fast")
     sim.run()
     reasons = sim.physics.counts.reasons
-    allowed = {BAIL_REASONS[R_RECORDS], BAIL_REASONS[R_CLIMB], "a motion waiting to complete"}
+    allowed = {BAIL_REASONS[R_CLIMB], "a motion waiting to complete"}
     assert set(reasons) <= allowed, reasons
+
+
+def test_record_ends_are_reported_in_the_kernel(tmp_path: Path) -> None:
+    """A record untouched for over a second ends (``report_collision_end``, acclient.c:321712):
+    the kernel drops it and both bodies hear ``collision_end:NAME``
+    (``report_object_collision_end``, acclient.c:317868), in the table's order. The slider leaves
+    the standers of the row behind one after another, each end heard by both."""
+    result = compare_engines(lambda engine: parse_scenario(MEETINGS, "<meetings>", engine=engine), tmp_path)
+    assert result.identical, result.divergence
+    ends = [
+        (record["body"], event)
+        for _, record in read_trace(tmp_path / "fast.jsonl")
+        for event in record["events"]
+        if event.startswith("collision_end:")
+    ]
+    assert len(ends) >= 4, ends  # two at least, each heard on both sides
+    assert ("sideways", "collision_end:row-0") in ends and ("row-0", "collision_end:sideways") in ends
+    sim = parse_scenario(MEETINGS, "<meetings>", engine="fast")
+    sim.run()
+    assert BAIL_REASONS[R_RECORDS] not in sim.physics.counts.reasons
 
 
 def test_reports_reach_the_objects_without_a_trace() -> None:

@@ -396,27 +396,29 @@ class FastPhysics(Physics):
         its step's row."""
         rows = int(self._counters[kernels.LOGGED]) if self._writer is not None else 0
         deferred = self._owed[: int(self._counters[kernels.OWED])].tolist()
-        reports = [r for r in deferred if r[0] == kernels.DEFERRED_COLLISION]
+        reports = [r for r in deferred if r[0] != kernels.DEFERRED_ANIM_DONE]
         next_report = 0
         for n, row in enumerate(self._log[:rows]):
             own = []
             while next_report < len(reports) and reports[next_report][1] <= n:
-                _, _, receiver, other, is_own = reports[next_report]
+                kind, _, receiver, other, is_own = reports[next_report]
                 if is_own:
-                    own.append(self._report_name(other))
+                    own.append(self._report_name(kind, other))
                 else:
-                    self._bodies[receiver].step_events.append(self._report_name(other))
+                    self._bodies[receiver].step_events.append(self._report_name(kind, other))
                 next_report += 1
             self._writer.write_record(self._record_of(row, own))
-        for _, _, receiver, other, is_own in reports[next_report:]:
+        for kind, _, receiver, other, is_own in reports[next_report:]:
             if not is_own:  # the mover's own report lived for its step only (no trace: no row)
-                self._bodies[receiver].step_events.append(self._report_name(other))
+                self._bodies[receiver].step_events.append(self._report_name(kind, other))
         self._counters[kernels.LOGGED] = 0
 
-    def _report_name(self, j: int) -> str:
-        """``collision:NAME`` of a report of body ``j`` (its id in hex without a name)."""
+    def _report_name(self, kind: int, j: int) -> str:
+        """``collision:NAME`` (or ``collision_end:NAME`` for a report of the end) of a report of
+        body ``j`` (its id in hex without a name)."""
         other = self._bodies[j]
-        return "collision:" + (other.name if other.name else f"0x{other.id:08X}")
+        prefix = "collision_end:" if kind == kernels.DEFERRED_COLLISION_END else "collision:"
+        return prefix + (other.name if other.name else f"0x{other.id:08X}")
 
     def _record_of(self, row: np.ndarray, reports: list[str]) -> dict[str, Any]:
         """A trace record from a kernel log row; ``reports``: the collision reports the step made

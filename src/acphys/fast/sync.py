@@ -116,8 +116,14 @@ def store_body(record: np.void, body: PhysicsObj) -> None:
     count = int(record["num_records"])
     if count and body.collision_table is None:
         body.collision_table = CollisionTable()
+    table = body.collision_table
+    kept = {int(object_id) for object_id in record["record_obj"][:count]}
+    if table is not None:
+        for object_id in table.ids():  # the records the kernel's steps ended
+            if object_id not in kept:
+                table.remove(object_id)
     for r in range(count):  # known records clobbered in place, new ones appended: retail's order
         touched = CollisionRecord(float(record["record_time"][r]), bool(record["record_ethereal"][r]))
-        body.collision_table.clobber(int(record["record_obj"][r]), touched)
+        table.clobber(int(record["record_obj"][r]), touched)  # type: ignore[union-attr]
     if body.part_array is not None:
         body.part_array.update_parts(frame)

@@ -36,7 +36,7 @@ BAIL_REASONS = (
     "landing or leaving the ground with a movement manager",
     "a full journal, log, list or collision table",
     "an animation hook",
-    "a collision record ending",
+    "a collision record ending with a body the kernel does not answer for",
     "a step down past a sphere (a root of a negative number)",
 )
 R_STATIC, R_CLIMB, R_SHAPE, R_CONTACT, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7

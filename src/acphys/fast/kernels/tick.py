@@ -116,14 +116,16 @@ EVENT_PENDING = 8
 MAX_STEPS_PER_UPDATE = 11
 JOURNAL_ROWS = 4096
 #: Kinds of the deferred log's rows ``(kind, a, b, c, d)``: an AnimDone hook owed
-#: ``(body, count)``; a collision report ``(row, receiver, other, own)``: ``receiver`` hears of
-#: ``other`` (``collision:NAME``), in the trace row ``row`` when ``own`` (the mover's own step),
-#: else before the receiver's next step.
+#: ``(body, count)``; a collision report or the report of its end ``(row, receiver, other,
+#: own)``: ``receiver`` hears of ``other`` (``collision:NAME``, ``collision_end:NAME``), in the
+#: trace row ``row`` when ``own`` (the mover's own step), else before the receiver's next step.
 DEFERRED_ANIM_DONE = 0
 DEFERRED_COLLISION = 1
+DEFERRED_COLLISION_END = 2
 DEFERRED_WIDTH = 5
-#: The most deferred rows one quantum adds: its AnimDone row, two reports per body touched.
-DEFERRED_PER_STEP = 1 + 2 * MAX_COLLIDE
+#: The most deferred rows one quantum adds: its AnimDone row, two reports per body touched and
+#: per record ended.
+DEFERRED_PER_STEP = 1 + 2 * MAX_COLLIDE + 2 * MAX_RECORDS
 
 # Journal row kinds: pool[a] was b; cells[a].num_shadows was b;
 # bodies[a // MAX_CELLS].shadow_slot[a % MAX_CELLS] was b.
@@ -485,24 +487,71 @@ def transition(w, tr, i, origin, q, m):
 
 
 @njit(cache=True, _nrt=False)
-def records_expire(b, now):
-    """Whether ``report_collision_end`` would end a record now (untouched for over a second, or an
-    ethereal one for any time): it reports the end to both bodies, which is the reference path's.
-
-    Part of :meth:`acphys.body.reports.CollisionReports.report_collision_end`.
-    Retail: CPhysicsObj::report_collision_end @ 0x00514620 (acclient.c:321712)
-    """
-    for r in range(b.num_records):
-        age = now - b.record_time[r]
-        if age > 1.0 or (b.record_ethereal[r] and age > 0.0):
-            return True
-    return False
+def _expired(b, r, now):
+    age = now - b.record_time[r]
+    return age > 1.0 or (b.record_ethereal[r] and age > 0.0)
 
 
 @njit(cache=True, _nrt=False)
-def _report(owed, counters, row, receiver, other, own):
+def _body_of(bodies, obj_id):
+    for j in range(len(bodies)):
+        if bodies[j].obj_id == obj_id:
+            return j
+    return -1
+
+
+@njit(cache=True, _nrt=False)
+def end_collisions(bodies, i, now, owed, counters):
+    """Drop the records of body ``i`` untouched for over a second (an ethereal one for any time)
+    and report their ends (``collision_end:NAME``, deferred: :data:`DEFERRED_COLLISION_END`), in
+    retail's table order: bucket ``(id ^ (id >> 8)) & 3`` from 0 to 3, the newest record first in
+    a bucket (no report of one that reports as the environment). Returns 0, or why the reference
+    path must: the other body is not the kernel's to answer for (uncovered, gone, a callback).
+
+    Port of :meth:`acphys.body.reports.CollisionReports.report_collision_end` (not forced) and
+    :meth:`~acphys.body.reports.CollisionReports.report_object_collision_end`.
+    Retail: CPhysicsObj::report_collision_end @ 0x00514620 (acclient.c:321712),
+    CPhysicsObj::report_object_collision_end @ 0x00510A90 (acclient.c:317868)
+    """
+    b = bodies[i]
+    count = b.num_records
+    any_ended = False
+    for r in range(count):
+        if _expired(b, r, now):
+            any_ended = True
+    if not any_ended:
+        return 0
+    row = counters[LOGGED]
+    for bucket in range(4):
+        for r in range(count - 1, -1, -1):  # records are kept oldest first: newest first here
+            obj_id = b.record_obj[r]
+            if (obj_id ^ (obj_id >> 8)) & 3 != bucket or not _expired(b, r, now):
+                continue
+            j = _body_of(bodies, obj_id)
+            if j < 0 or not bodies[j].covered or bodies[j].on_collision:
+                return R_RECORDS
+            other = bodies[j]
+            if other.state & PS_REPORT_AS_ENVIRONMENT:  # the environment: no end is reported
+                continue
+            if b.state & PS_REPORT_COLLISIONS:
+                _report(owed, counters, DEFERRED_COLLISION_END, row, i, j, 1)
+            if other.state & PS_REPORT_COLLISIONS:
+                _report(owed, counters, DEFERRED_COLLISION_END, row, j, i, 0)
+    kept = 0
+    for r in range(count):  # the survivors keep their order
+        if not _expired(b, r, now):
+            b.record_obj[kept] = b.record_obj[r]
+            b.record_time[kept] = b.record_time[r]
+            b.record_ethereal[kept] = b.record_ethereal[r]
+            kept += 1
+    b.num_records = kept
+    return 0
+
+
+@njit(cache=True, _nrt=False)
+def _report(owed, counters, kind, row, receiver, other, own):
     n = counters[OWED]
-    owed[n, 0] = DEFERRED_COLLISION
+    owed[n, 0] = kind
     owed[n, 1] = row
     owed[n, 2] = receiver
     owed[n, 3] = other
@@ -553,9 +602,9 @@ def track_object_collisions(bodies, i, tr, now, owed, counters):
         b.num_records = r + 1
         row = counters[LOGGED]
         if not other.state & PS_IGNORE_COLLISIONS and b.state & PS_REPORT_COLLISIONS:
-            _report(owed, counters, row, i, j, 1)
+            _report(owed, counters, DEFERRED_COLLISION, row, i, j, 1)
         if other.state & PS_REPORT_COLLISIONS and not b.state & PS_IGNORE_COLLISIONS:
-            _report(owed, counters, row, j, i, 0)
+            _report(owed, counters, DEFERRED_COLLISION, row, j, i, 0)
     return 0
 
 
@@ -564,7 +613,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     """Report touching the environment, bounce or stop, and keep the stationary bits.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.handle_all_collisions` after the tracking
-    (:func:`track_object_collisions`; a step of the kernel ends no record: :func:`records_expire`) and of
+    (:func:`track_object_collisions`, :func:`end_collisions`) and of
     :meth:`acphys.body.reports.CollisionReports.report_environment_collision`.
     Retail: CPhysicsObj::handle_all_collisions @ 0x00514780 (acclient.c:321807),
     CPhysicsObj::report_environment_collision @ 0x00512FC0 (acclient.c:320193)
@@ -668,8 +717,9 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
     reason = track_object_collisions(bodies, i, tr, now, owed, counters)
     if reason:
         return bail(tr, reason), events
-    if records_expire(b, now):
-        return bail(tr, R_RECORDS), events
+    reason = end_collisions(bodies, i, now, owed, counters)
+    if reason:
+        return bail(tr, reason), events
     events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
     if tr.num_cells:
         if not remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
@@ -681,7 +731,7 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
             counters[GROW_CELL] = full
             return GROW, events
     for n in range(first_report, counters[OWED]):  # the step stands: the receivers hold events
-        if owed[n, 0] == DEFERRED_COLLISION and not owed[n, 4]:
+        if owed[n, 0] != DEFERRED_ANIM_DONE and not owed[n, 4]:
             bodies[owed[n, 2]].step_events = True
     return 0, events
 

@@ -304,9 +304,7 @@ def _warm_up(workload: str) -> float:
     return time.perf_counter() - start
 
 
-def run_workload(
-    workload: str, engine: str, bodies: int, seconds: float, base_rate: float
-) -> BenchResult:
+def run_workload(workload: str, engine: str, bodies: int, seconds: float, base_rate: float) -> BenchResult:
     """One workload on one engine (``reference`` or ``fast``)."""
     description, build = WORKLOADS[workload]
     compile_seconds = _warm_up(workload) if engine == "fast" else None

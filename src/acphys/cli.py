@@ -158,9 +158,7 @@ def _build_parser() -> argparse.ArgumentParser:
         metavar="S",
         help="--html of a trace: draw this scenario's world (default: the built-in the trace names)",
     )
-    view.add_argument(
-        "--until", metavar="SECONDS", type=float, help="--html of a scenario: run to this time"
-    )
+    view.add_argument("--until", metavar="SECONDS", type=float, help="--html of a scenario: run to this time")
     view.add_argument(
         "--engine", choices=ENGINES, help="--html of a scenario: the engine to run (default reference)"
     )
@@ -576,8 +574,11 @@ def _view(console: Console, args: argparse.Namespace) -> int:
             warn=lambda message: print(f"acphys: warning: {one_line(message)}", file=sys.stderr),
         )
         records = f"{result.records:,} records, {result.events:,} events"
-        _say(console, f"view: {args.html} ({_count(result.bodies, 'body', 'bodies')}, {records}, "
-                      f"{result.bytes / 1e6:.2f} MB)")
+        _say(
+            console,
+            f"view: {args.html} ({_count(result.bodies, 'body', 'bodies')}, {records}, "
+            f"{result.bytes / 1e6:.2f} MB)",
+        )
         return 0
     for option in ("scenario", "until", "engine"):
         if getattr(args, option) is not None:

@@ -178,9 +178,7 @@ def trace_schema() -> dict[str, Any]:
     return json.loads(text)
 
 
-def trace_header(
-    scenario: str, sha256: str | None, driver_hz: float, engine: str
-) -> dict[str, Any]:
+def trace_header(scenario: str, sha256: str | None, driver_hz: float, engine: str) -> dict[str, Any]:
     """The first record of a v2 trace: what wrote it and from what."""
     from acphys import __version__
 

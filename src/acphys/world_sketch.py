@@ -203,8 +203,6 @@ def _terrain(block: int, terrain: Any) -> TerrainSketch:
     )
 
 
-
-
 def _placed(polygons: Iterable[Any], frame: Frame, corner: np.ndarray, scale: Any = 1.0) -> list[np.ndarray]:
     """``polygons`` (local to ``frame``, before ``scale``) in global metres."""
     matrix = frame.to_matrix()
@@ -239,9 +237,7 @@ def _object(obj: PhysicsObj, budget: _Budget) -> ShapeSketch:
     for part in parts.parts:
         if part.physics_bsp is not None:
             scale = part.gfxobj_scale
-            faces += _placed(
-                _polygons(part.physics_bsp), part.pos.frame, corner, (scale.x, scale.y, scale.z)
-            )
+            faces += _placed(_polygons(part.physics_bsp), part.pos.frame, corner, (scale.x, scale.y, scale.z))
     shape.faces = budget.take(faces)
     scale = parts.scale
     for sphere in parts.setup.spheres:

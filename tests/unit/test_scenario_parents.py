@@ -103,8 +103,6 @@ target = "b"
     trace = tmp_path / "cycle.jsonl"
     sim = acphys.parse_scenario(text, source="cycle.toml")
     sim.run(trace=trace)
-    events = [
-        e for record in step_records(trace) for e in record["events"]
-    ]
+    events = [e for record in step_records(trace) for e in record["events"]]
     assert "set_parent:b:cycle" in events
     assert sim.body("b").parent is sim.body("a") and sim.body("a").parent is None

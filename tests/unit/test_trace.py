@@ -393,9 +393,7 @@ def test_within_a_record_fields_are_compared_in_record_key_order(
     assert (found.line, found.field) == (11, "origin[1]")
 
 
-def test_the_tolerance_is_exclusive(
-    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
-) -> None:
+def test_the_tolerance_is_exclusive(records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path) -> None:
     # 0.5 is exact in binary, and so is the difference 400.0 - 399.5.
     index = 0  # the skydiver at z = 400 on its first step
     assert records[index]["origin"][2] == 400.0
@@ -405,9 +403,7 @@ def test_the_tolerance_is_exclusive(
     assert found is not None and found.field == "origin[2]"
 
 
-def test_a_changed_cell_is_reported(
-    records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path
-) -> None:
+def test_a_changed_cell_is_reported(records: list[dict[str, Any]], steps_trace: Path, tmp_path: Path) -> None:
     changed = json.loads(json.dumps(records))
     changed[12]["cell"] = "0xA9B40001"
     assert records[12]["cell"] != "0xA9B40001"

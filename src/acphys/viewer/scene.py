@@ -207,8 +207,6 @@ def _primitive_room(scene: Scene) -> bool:
     return False
 
 
-
-
 def _add_polygons(
     scene: Scene,
     layer: str,

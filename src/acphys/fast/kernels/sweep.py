@@ -102,7 +102,6 @@ WT_ENTIRELY_WATER = int(WaterType.ENTIRELY_WATER)
 ENTIRELY_WATER_DEPTH = 0.9
 
 
-
 # -- the transition's set-up ------------------------------------------------------------------
 
 
@@ -609,9 +608,7 @@ def cliff_slide(tr, nx, ny, nz):
         add_offset_to_check_pos(tr, f32(normal[0] * along), f32(normal[1] * along), f32(normal[2] * along))
         set_collision_normal(tr, normal[0], normal[1], normal[2])
     else:
-        add_offset_to_check_pos(
-            tr, f32(normal[0] * -along), f32(normal[1] * -along), f32(normal[2] * -along)
-        )
+        add_offset_to_check_pos(tr, f32(normal[0] * -along), f32(normal[1] * -along), f32(normal[2] * -along))
         set_collision_normal(tr, -normal[0], -normal[1], -normal[2])
     return ADJUSTED
 
@@ -832,8 +829,9 @@ def validate_transition(w, tr, ts):
             cx, cy, cz = tr.global_curr_center[0, 0], tr.global_curr_center[0, 1], tr.global_curr_center[0, 2]
             dist = cz * n[2] + cy * n[1] + cx * n[0] + tr.last_known_contact_d
             if tr.global_sphere[0, 3] + EPSILON > abs(dist):
-                set_contact_plane(tr, n[0], n[1], n[2], tr.last_known_contact_d,
-                                  tr.last_known_contact_plane_is_water)
+                set_contact_plane(
+                    tr, n[0], n[1], n[2], tr.last_known_contact_d, tr.last_known_contact_plane_is_water
+                )
                 tr.contact_plane_cell_id = tr.last_known_contact_plane_cell_id
                 if tr.oi_state & OI_ON_WALKABLE:
                     moved = True
@@ -912,7 +910,11 @@ def find_transitional_position(w, tr):
             return 1 if step != 0 and ts == OK else 0
         if not free:
             q, m = frame_interpolate_rotation(
-                t3(tr.check_origin), t4(tr.check_q), t9(tr.check_m), t4(tr.begin_q), t4(tr.end_q),
+                t3(tr.check_origin),
+                t4(tr.check_q),
+                t9(tr.check_m),
+                t4(tr.begin_q),
+                t4(tr.end_q),
                 (step + 1) / num_steps,
             )
             put(tr.check_q, q)

@@ -902,8 +902,28 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed)
 
 
 @njit(cache=True, _nrt=False)
-def run_bodies(bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks, tr_array,
-               clock, start, tracing, log, moves, counters, journal, owed, saved, saved_tr):
+def run_bodies(
+    bodies,
+    cells,
+    landblock_index,
+    shadow_pool,
+    heads,
+    grid,
+    anims,
+    pos_frames,
+    hooks,
+    tr_array,
+    clock,
+    start,
+    tracing,
+    log,
+    moves,
+    counters,
+    journal,
+    owed,
+    saved,
+    saved_tr,
+):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with

@@ -87,7 +87,7 @@ GARBAGE = [
 ]
 
 #: Every command that reads a file: its arguments around the garbage file ``F`` (``T`` is a good
-#: trace, ``O`` a picture to write).
+#: trace, ``O`` a picture and ``H`` a page to write).
 FILE_COMMANDS = {
     "run": ["run", "F"],
     "check": ["check", "F"],
@@ -95,6 +95,9 @@ FILE_COMMANDS = {
     "diff (second)": ["diff", "T", "F"],
     "plot": ["plot", "F", "-o", "O"],
     "view": ["view", "F"],
+    "view --html": ["view", "F", "--html", "H"],
+    "plot --scenario": ["plot", "T", "-o", "O", "--scenario", "F"],
+    "corpus check": ["corpus", "check", "F"],
     "dat info": ["dat", "info", "F"],
     "dat list": ["dat", "list", "F"],
     "dat setup": ["dat", "setup", "F", "0x02000001"],
@@ -192,7 +195,7 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> Runs:
     files = _garbage(root / "files")
     trace = root / "good.jsonl"
     load_scenario("default").run(until=0.2, trace=trace)
-    fill = {"T": str(trace), "O": str(root / "out.png"), "P": str(files["fifo"])}
+    fill = {"T": str(trace), "O": str(root / "out.png"), "H": str(root / "out.html"), "P": str(files["fifo"])}
     commands: dict[str, list[str]] = {}
     for case, (command, label) in CASES.items():
         if label is None:

@@ -1159,17 +1159,9 @@ def _draw_shapes(
         z = style["z"]
         # From the south, faces one behind another: translucent, so the nearer hide nothing.
         face = style["face"] if top or style["face"] == "none" else to_rgba(style["face"], SIDE_ALPHA)
+        filled = {"facecolors": face, "edgecolors": style["edge"], "linewidths": style["width"]}
         if polygons:
-            ax.add_collection(
-                PolyCollection(
-                    polygons,
-                    facecolors=face,
-                    edgecolors=style["edge"],
-                    linewidths=style["width"],
-                    zorder=z,
-                    gid=kind,
-                )
-            )
+            ax.add_collection(PolyCollection(polygons, **filled, zorder=z, gid=kind))
         if lines:
             ax.add_collection(
                 LineCollection(
@@ -1181,16 +1173,7 @@ def _draw_shapes(
                 )
             )
         if patches:
-            ax.add_collection(
-                PatchCollection(
-                    patches,
-                    facecolors=face,
-                    edgecolors=style["edge"],
-                    linewidths=style["width"],
-                    zorder=z,
-                    gid=kind,
-                )
-            )
+            ax.add_collection(PatchCollection(patches, **filled, zorder=z, gid=kind))
         if anchors:
             ax.scatter(*np.array(anchors).T, marker="+", s=30, c=style["edge"], zorder=z, label=f"_{kind}")
         drawn.add(kind)

@@ -11,10 +11,14 @@ from __future__ import annotations
 import numpy as np
 
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
+from acphys.fast.layout import BODY
 from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
+
+#: Where each field of a body record stands in ``record.item()``.
+_FIELD = {name: index for index, name in enumerate(BODY.names)}
 
 
 def _vec(v: Vector3) -> tuple[float, float, float]:
@@ -93,37 +97,46 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
 def store_body(record: np.void, body: PhysicsObj) -> None:
     """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell, shadows or
     sequence, which the engine hands back, nor its parts, which follow its sequence)."""
-    body._state = int(record["state"])
-    body._transient_state = int(record["transient"])
-    body.update_time = float(record["update_time"])
-    body.player_distance = float(record["player_distance"])
-    body.player_vector = _vector(record["player_vector"])
+    values = record.item()  # every field at once: a tenth of the cost of reading them one by one
+    field = _FIELD
+
+    def vector(name: str) -> Vector3:
+        x, y, z = values[field[name]].tolist()
+        return Vector3(x, y, z)
+
+    body._state = values[field["state"]]
+    body._transient_state = values[field["transient"]]
+    body.update_time = values[field["update_time"]]
+    body.player_distance = values[field["player_distance"]]
+    body.player_vector = vector("player_vector")
     frame = body.position.frame
-    frame.origin = _vector(record["origin"])
-    frame.qw, frame.qx, frame.qy, frame.qz = record["q"].tolist()
-    frame.m[:] = record["m"].tolist()
-    body.velocity = _vector(record["velocity"])
-    body.acceleration = _vector(record["acceleration"])
-    body.omega = _vector(record["omega"])
-    body.cached_velocity = _vector(record["cached_velocity"])
-    body.contact_plane = Plane(_vector(record["contact_n"]), float(record["contact_d"]))
-    body.contact_plane_cell_id = int(record["contact_cell_id"])
-    body.sliding_normal = _vector(record["sliding_normal"])
-    body.jumped_this_frame = bool(record["jumped_this_frame"])
-    if not record["step_events"]:
+    frame.origin = vector("origin")
+    frame.qw, frame.qx, frame.qy, frame.qz = values[field["q"]].tolist()
+    frame.m[:] = values[field["m"]].tolist()
+    body.velocity = vector("velocity")
+    body.acceleration = vector("acceleration")
+    body.omega = vector("omega")
+    body.cached_velocity = vector("cached_velocity")
+    body.contact_plane = Plane(vector("contact_n"), values[field["contact_d"]])
+    body.contact_plane_cell_id = values[field["contact_cell_id"]]
+    body.sliding_normal = vector("sliding_normal")
+    body.jumped_this_frame = bool(values[field["jumped_this_frame"]])
+    if not values[field["step_events"]]:
         body.step_events.clear()  # the kernel's step recorded them
-    body.colliding_with_environment = bool(record["colliding_with_environment"])
-    count = int(record["num_records"])
+    body.colliding_with_environment = bool(values[field["colliding_with_environment"]])
+    count = values[field["num_records"]]
     if count and body.collision_table is None:
         body.collision_table = CollisionTable()
     table = body.collision_table
-    kept = {int(object_id) for object_id in record["record_obj"][:count]}
+    objects = values[field["record_obj"]][:count].tolist()
     if table is not None:
+        kept = set(objects)
         for object_id in table.ids():  # the records the kernel's steps ended
             if object_id not in kept:
                 table.remove(object_id)
-    for r in range(count):  # known records clobbered in place, new ones appended: retail's order
-        touched = CollisionRecord(float(record["record_time"][r]), bool(record["record_ethereal"][r]))
-        table.clobber(int(record["record_obj"][r]), touched)  # type: ignore[union-attr]
+    times = values[field["record_time"]].tolist()
+    ethereal = values[field["record_ethereal"]].tolist()
+    for r, object_id in enumerate(objects):  # known records clobbered in place, new ones appended
+        table.clobber(object_id, CollisionRecord(times[r], bool(ethereal[r])))  # type: ignore[union-attr]
     if body.part_array is not None:
         body.part_array.update_parts(frame)

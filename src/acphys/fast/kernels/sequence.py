@@ -147,15 +147,6 @@ def load_sequence(record: np.void, sequence: Sequence, anim_index: dict[int, int
     return True
 
 
-def _node_matches(node: AnimSequenceNode, record: np.void, index: int, animations: list[Animation]) -> bool:
-    return (
-        node.animation is animations[int(record["seq_anim"][index])]
-        and node.framerate == float(record["seq_framerate"][index])
-        and node.low_frame == int(record["seq_low"][index])
-        and node.high_frame == int(record["seq_high"][index])
-    )
-
-
 def store_sequence(record: np.void, sequence: Sequence, animations: list[Animation]) -> None:
     """Copy ``record``'s ``seq_*`` fields back into ``sequence`` (``animations``: the table's rows).
 
@@ -164,25 +155,34 @@ def store_sequence(record: np.void, sequence: Sequence, animations: list[Animati
     otherwise the list is rebuilt with new nodes holding the record's fields.
     """
     count = int(record["seq_nodes"])
+    rows = list(
+        zip(
+            [animations[row] for row in record["seq_anim"][:count].tolist()],
+            record["seq_framerate"][:count].tolist(),
+            record["seq_low"][:count].tolist(),
+            record["seq_high"][:count].tolist(),
+            strict=True,
+        )
+    )
     nodes = sequence.anim_list
     dropped = len(nodes) - count
-    if dropped >= 0 and all(_node_matches(nodes[dropped + i], record, i, animations) for i in range(count)):
+    if dropped >= 0 and all(
+        node.animation is row[0] and (node.framerate, node.low_frame, node.high_frame) == row[1:]
+        for node, row in zip(nodes[dropped:], rows, strict=True)
+    ):
         del nodes[:dropped]
     else:
         fresh = []
-        for index in range(count):
+        for animation, rate, low, high in rows:
             node = AnimSequenceNode.__new__(AnimSequenceNode)  # the record's fields, unrefitted
-            node.animation = animations[int(record["seq_anim"][index])]
-            node.framerate = float(record["seq_framerate"][index])
-            node.low_frame = int(record["seq_low"][index])
-            node.high_frame = int(record["seq_high"][index])
+            node.animation, node.framerate, node.low_frame, node.high_frame = animation, rate, low, high
             fresh.append(node)
         nodes[:] = fresh
     sequence.curr_anim = nodes[int(record["seq_curr"])] if count else None
     sequence.first_cyclic = nodes[int(record["seq_first_cyclic"])] if count else None
     sequence.frame_number = float(record["seq_frame_number"])
-    sequence.velocity = Vector3(*(float(value) for value in record["seq_velocity"]))
-    sequence.omega = Vector3(*(float(value) for value in record["seq_omega"]))
+    sequence.velocity = Vector3(*record["seq_velocity"].tolist())
+    sequence.omega = Vector3(*record["seq_omega"].tolist())
 
 
 # -- playback --------------------------------------------------------------------------------------

@@ -98,7 +98,7 @@ def write_synthetic_trace(path: Path, bodies: int, seconds: float, hz: float = 3
                         "turn": None,
                         "turn_speed": 1.0,
                         "hold_key": "run",
-                        "animation": f"motion_table.cycle[{s['motion']}]",
+                        "animation": f"motion_table.humanoid.cycle[{s['motion']}]",
                         "frame": s["frame"],
                     },
                     "events": events,

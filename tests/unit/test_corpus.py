@@ -137,8 +137,8 @@ def test_the_builtins_pasted_into_a_scenario_run_the_same(
     case: str, until: float, small: Path, tmp_path: Path
 ) -> None:
     """The human setup, its motion table and the land height table, as the corpus writes them,
-    given in the scenario itself instead of taken from acphys: the same physics (the animations'
-    names, ``motion.animation``, say where acphys read the table)."""
+    given in the scenario itself instead of taken from acphys: the same trace, the animations'
+    names (``motion.animation``, ``motion_table.humanoid.cycle[0]``, ...) included."""
     builtins = {
         name: tomllib.loads((small / "builtins" / f"{name}.toml").read_text(encoding="utf-8"))
         for name in ("human", "humanoid", "land_height_table")
@@ -153,7 +153,7 @@ def test_the_builtins_pasted_into_a_scenario_run_the_same(
     pasted, built_in = tmp_path / "pasted.jsonl", tmp_path / "built-in.jsonl"
     build_scenario(document).run(until=until, trace=pasted)
     parse_scenario(scenario_text(case)).run(until=until, trace=built_in)
-    assert compare_traces(built_in, pasted, 0.0, ignore=["motion.animation"]).identical
+    assert compare_traces(built_in, pasted, 0.0).identical
 
 
 def test_an_altered_golden_trace_is_refused_naming_it(

@@ -293,13 +293,13 @@ def test_motion_is_the_interpreted_state_and_the_animation_playing(records: list
         assert list(record["motion"]) == list(MOTION_KEYS)
     # Standing until the 0.5-s event: Ready, the motion table's first cycle.
     assert walker[0]["motion"]["forward"] == "Ready" and walker[0]["motion"]["hold_key"] == "none"
-    assert walker[0]["motion"]["animation"] == "motion_table.cycle[0]"
+    assert walker[0]["motion"]["animation"] == "motion_table.humanoid.cycle[0]"
     # The event's tick: WalkForward; with the run key held the interpreter makes it RunForward
     # (CMotionInterp::adjust_motion), and each starts on its link animation.
     assert walker[-1]["motion"]["forward"] == "WalkForward"
     assert (runner[-1]["motion"]["forward"], runner[-1]["motion"]["hold_key"]) == ("RunForward", "run")
-    assert walker[-1]["motion"]["animation"] == "motion_table.link[0]"
-    assert runner[-1]["motion"]["animation"] == "motion_table.link[2]"
+    assert walker[-1]["motion"]["animation"] == "motion_table.humanoid.link[0]"
+    assert runner[-1]["motion"]["animation"] == "motion_table.humanoid.link[2]"
     assert walker[-1]["motion"]["turn"] is None and walker[-1]["motion"]["sidestep"] is None
 
 

@@ -272,7 +272,9 @@ def builtin_motion_table(name: str) -> MotionTable:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ScenarioError(f"{source}: not valid TOML: {error}") from None
-    return read_motion_table(Ctx(source), "motion_table", document.get("motion_table"))
+    # Keyed as a scenario's [motion_table.NAME] would be: its animations are named the same
+    # ("motion_table.humanoid.cycle[0]") whether a scenario writes the table out or not.
+    return read_motion_table(Ctx(source), f"motion_table.{name}", document.get("motion_table"))
 
 
 def _frames_declared(tables: dict[str, Any]) -> int:

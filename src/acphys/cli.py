@@ -24,7 +24,7 @@ from acphys.bench import ENGINE_CHOICES, WORKLOADS, run_suite
 from acphys.corpus import CaseResult, CorpusError, check_corpus, export_corpus, read_manifest
 from acphys.dat import REGION_ID, DatError, DatFile, unpack_region, unpack_setup
 from acphys.flags import TransientState, flag_names
-from acphys.inputs import InputError, one_line
+from acphys.inputs import InputError, OptionError, one_line, split_names
 from acphys.math.cell_id import format_cell_id
 from acphys.math.vector import Vector3
 from acphys.plot import (
@@ -32,7 +32,6 @@ from acphys.plot import (
     PathRecorder,
     PlotError,
     check_output,
-    parse_bodies,
     read_paths,
     select_bodies,
     shown_name,
@@ -43,7 +42,7 @@ from acphys.scenario import ScenarioError, builtin_scenario_text, builtin_scenar
 from acphys.scenario.motion_tables import builtin_motion_table_text, builtin_motion_tables
 from acphys.simulation import ENGINES, Simulation
 from acphys.trace import TraceError, brief, trace_schema
-from acphys.trace_diff import DiffError, DiffReport, Divergence, compare_traces, split_names
+from acphys.trace_diff import DiffError, DiffReport, Divergence, compare_traces
 from acphys.view import show
 from acphys.world_sketch import sketch_world
 
@@ -255,7 +254,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _diff(console, args)
     except ScenarioError as error:
         return _fail("\n".join(one_line(problem) for problem in error.problems), EXIT_BAD_INPUT)
-    except (TraceError, PlotError, DatError) as error:
+    except (TraceError, PlotError, DatError, OptionError) as error:
         return _fail(one_line(str(error)), EXIT_BAD_INPUT)
     except OSError as error:
         return _fail(one_line(f"{error.filename or ''}: {error.strerror or error}"), EXIT_BAD_INPUT)
@@ -493,7 +492,7 @@ def _context_table(divergence: Divergence) -> Table:
 def _corpus(console: Console, args: argparse.Namespace) -> int:
     """``acphys corpus export`` and ``acphys corpus check``: a line per case, or a table of them."""
     try:
-        names = None if args.cases is None else split_names(args.cases, "--cases")
+        names = split_names(args.cases, "--cases")
         if args.corpus_command == "export":
             manifest = export_corpus(args.dir, names, on_case=lambda name: _say(console, f"exporting {name}"))
             cases = _count(len(manifest["cases"]), "case", "cases")
@@ -545,7 +544,7 @@ def _plot(
     view: str | None,
     scenario: str | None = None,
 ) -> int:
-    names = parse_bodies(bodies)
+    names = split_names(bodies, "--bodies", "body name")
     check_output(output)
     paths = read_paths(trace)
     found = trace_world(trace, scenario)
@@ -560,7 +559,7 @@ def _view(console: Console, args: argparse.Namespace) -> int:
     """``acphys view``: the text view of a trace, or with ``--html`` the replay page of a trace or
     a scenario (:mod:`acphys.viewer`)."""
     trace, bodies = args.trace, args.bodies
-    names = parse_bodies(bodies)
+    names = split_names(bodies, "--bodies", "body name")
     if args.html is not None:
         from acphys.viewer import write_html
 

@@ -30,6 +30,21 @@ def one_line(text: str) -> str:
     return "".join(char if char.isprintable() else repr(char)[1:-1] for char in text)
 
 
+class OptionError(ValueError):
+    """A command-line option's value acphys cannot use; ``str()`` is one line naming the option."""
+
+
+def split_names(text: str | None, option: str, noun: str = "name") -> list[str] | None:
+    """A comma-separated option (``--bodies a,b``) as a list of names; None for None. An option
+    that names nothing (``--bodies ,``) is an :class:`OptionError` asking for one ``noun``."""
+    if text is None:
+        return None
+    names = [name.strip() for name in text.split(",") if name.strip()]
+    if not names:
+        raise OptionError(f"{option} needs at least one {noun}, like {option} a,b")
+    return names
+
+
 class InputError(OSError):
     """An input file acphys refuses; ``str()`` is one line: the path, then the problem.
 

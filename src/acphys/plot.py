@@ -392,16 +392,6 @@ class PathRecorder:
         self._collector.add(step_record(body, quantum), f"<run>:{one_line(body.name)}")
 
 
-def parse_bodies(text: str | None) -> list[str] | None:
-    """``--bodies a,b`` as a list of names (None: every body)."""
-    if text is None:
-        return None
-    names = [name.strip() for name in text.split(",") if name.strip()]
-    if not names:
-        raise PlotError("--bodies needs at least one body name, like --bodies ball,drifter")
-    return names
-
-
 def select_bodies(paths: dict[str, BodyPath], names: Sequence[str] | None) -> list[BodyPath]:
     """The paths of ``names`` (in that order), or every path; an unknown name is a :class:`PlotError`."""
     if names is None:

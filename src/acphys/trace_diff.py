@@ -159,16 +159,6 @@ class DiffReport:
         )
 
 
-def split_names(text: str | None, option: str) -> list[str] | None:
-    """A comma-separated option (``--bodies a,b``) as a list of names; None for None."""
-    if text is None:
-        return None
-    names = [name.strip() for name in text.split(",") if name.strip()]
-    if not names:
-        raise DiffError(f"{option} needs at least one name, like {option} a,b")
-    return names
-
-
 def diff_traces(path_a: str | Path, path_b: str | Path, tol: float = 1e-6) -> Divergence | None:
     """The first divergence of two traces beyond ``tol`` (see :func:`compare_traces`), or None."""
     return compare_traces(path_a, path_b, tol, context=0).first

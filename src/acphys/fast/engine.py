@@ -202,8 +202,10 @@ class FastPhysics(Physics):
             self.counts.kernel += int(self._counters[kernels.STEPS])
             self.counts.touching += int(self._counters[kernels.TOUCHING])
             self._counters[kernels.STEPS] = self._counters[kernels.TOUCHING] = 0
-            self._write_log()
-            self._run_owed_hooks()
+            deferred = self._owed[: int(self._counters[kernels.OWED])].tolist()
+            self._counters[kernels.OWED] = 0
+            self._write_log(deferred)
+            self._run_owed_hooks(deferred)
             start = stop
             if status == kernels.GROW:
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
@@ -215,14 +217,15 @@ class FastPhysics(Physics):
                 start += 1
         self.world.physics_time = float(self._clock[1])
 
-    def _run_owed_hooks(self) -> None:
-        """Run the AnimDone hooks the kernel's steps queued (``process_hooks``, the end of
+    def _run_owed_hooks(self, deferred: list[list[int]]) -> None:
+        """Run the AnimDone hooks the kernel's steps queued in ``deferred`` (the rows of its
+        deferred log) (``process_hooks``, the end of
         ``update_position_internal``), in the order the steps queued them, and the motion table's
         tick after (``CPartArray::HandleMovement``, the step's last act) when they left a motion with
         no animation to wait for. Both reach only the body's motion-table manager and motion
         interpreter (``MotionTableManager::AnimationDone`` → ``CMotionInterp::MotionDone``), which
         no step reads and the kernel never touches, so they run when the kernel returns."""
-        for kind, i, count, _, _ in self._owed[: int(self._counters[kernels.OWED])].tolist():
+        for kind, i, count, _, _ in deferred:
             if kind != kernels.DEFERRED_ANIM_DONE:
                 continue
             body = self._bodies[i]
@@ -232,7 +235,6 @@ class FastPhysics(Physics):
             table = parts.motion_table_manager if parts is not None else None
             if table is not None and table.pending_animations and not table.pending_animations[0].num_anims:
                 parts.handle_movement()
-        self._counters[kernels.OWED] = 0
 
     def _count_reason(self, i: int) -> None:
         record = self._records[i]
@@ -389,13 +391,12 @@ class FastPhysics(Physics):
         self._writer = writer
         self._reload = True
 
-    def _write_log(self) -> None:
-        """Write the kernel's trace rows, handing each collision report to its receiver in step
-        order: one of another body's step is appended to the receiver's ``step_events`` before
-        the receiver's next row (as the reference appends it at once); the mover's own goes into
-        its step's row."""
+    def _write_log(self, deferred: list[list[int]]) -> None:
+        """Write the kernel's trace rows, handing each collision report of ``deferred`` (the rows
+        of its deferred log) to its receiver in step order: one of another body's step is
+        appended to the receiver's ``step_events`` before the receiver's next row (as the
+        reference appends it at once); the mover's own goes into its step's row."""
         rows = int(self._counters[kernels.LOGGED]) if self._writer is not None else 0
-        deferred = self._owed[: int(self._counters[kernels.OWED])].tolist()
         reports = [r for r in deferred if r[0] != kernels.DEFERRED_ANIM_DONE]
         next_report = 0
         for n, row in enumerate(self._log[:rows]):

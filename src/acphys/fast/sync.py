@@ -101,8 +101,7 @@ def store_body(record: np.void, body: PhysicsObj) -> None:
     field = _FIELD
 
     def vector(name: str) -> Vector3:
-        x, y, z = values[field[name]].tolist()
-        return Vector3(x, y, z)
+        return _vector(values[field[name]])
 
     body._state = values[field["state"]]
     body._transient_state = values[field["transient"]]

@@ -534,9 +534,9 @@ def end_collisions(bodies, i, now, owed, counters):
             if other.state & PS_REPORT_AS_ENVIRONMENT:  # the environment: no end is reported
                 continue
             if b.state & PS_REPORT_COLLISIONS:
-                _report(owed, counters, DEFERRED_COLLISION_END, row, i, j, 1)
+                _defer(owed, counters, DEFERRED_COLLISION_END, row, i, j, 1)
             if other.state & PS_REPORT_COLLISIONS:
-                _report(owed, counters, DEFERRED_COLLISION_END, row, j, i, 0)
+                _defer(owed, counters, DEFERRED_COLLISION_END, row, j, i, 0)
     kept = 0
     for r in range(count):  # the survivors keep their order
         if not _expired(b, r, now):
@@ -549,13 +549,14 @@ def end_collisions(bodies, i, now, owed, counters):
 
 
 @njit(cache=True, _nrt=False)
-def _report(owed, counters, kind, row, receiver, other, own):
+def _defer(owed, counters, kind, a, b, c, d):
+    """Append a row ``(kind, a, b, c, d)`` to the deferred log (:data:`DEFERRED_ANIM_DONE`, ...)."""
     n = counters[OWED]
     owed[n, 0] = kind
-    owed[n, 1] = row
-    owed[n, 2] = receiver
-    owed[n, 3] = other
-    owed[n, 4] = own
+    owed[n, 1] = a
+    owed[n, 2] = b
+    owed[n, 3] = c
+    owed[n, 4] = d
     counters[OWED] = n + 1
 
 
@@ -602,9 +603,9 @@ def track_object_collisions(bodies, i, tr, now, owed, counters):
         b.num_records = r + 1
         row = counters[LOGGED]
         if not other.state & PS_IGNORE_COLLISIONS and b.state & PS_REPORT_COLLISIONS:
-            _report(owed, counters, DEFERRED_COLLISION, row, i, j, 1)
+            _defer(owed, counters, DEFERRED_COLLISION, row, i, j, 1)
         if other.state & PS_REPORT_COLLISIONS and not b.state & PS_IGNORE_COLLISIONS:
-            _report(owed, counters, DEFERRED_COLLISION, row, j, i, 0)
+            _defer(owed, counters, DEFERRED_COLLISION, row, j, i, 0)
     return 0
 
 
@@ -759,11 +760,7 @@ def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owe
     if status == STATUS_REFERENCE:
         return bail(tr, R_HOOK), 0
     if status == STATUS_ANIM_DONE:
-        n = counters[OWED]
-        owed[n, 0] = DEFERRED_ANIM_DONE
-        owed[n, 1] = i
-        owed[n, 2] = b.seq_anim_done
-        counters[OWED] = n + 1
+        _defer(owed, counters, DEFERRED_ANIM_DONE, i, b.seq_anim_done, 0, 0)
     return move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal, owed)
 
 

@@ -28,6 +28,7 @@ from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
 from acphys.fast.kernels.cells import BAIL_REASONS
+from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.sync import load_body, store_body
@@ -178,24 +179,10 @@ class FastPhysics(Physics):
         start = 0
         while start < len(self._bodies):
             status, stop = kernels.run_bodies(
-                self._records,
-                arrays.cells,
-                arrays.landblock_index,
-                arrays.shadow_pool,
-                self._grid_heads,
-                self._grid,
-                self._animations.anims,
-                self._animations.pos_frames,
-                self._animations.hooks,
+                self._context(),
                 self._transition,
-                self._clock,
                 start,
                 tracing,
-                self._log,
-                self._moves,
-                self._counters,
-                self._journal,
-                self._owed,
                 self._saved_body,
                 self._saved_transition,
             )
@@ -216,6 +203,28 @@ class FastPhysics(Physics):
                 self._reference_update(start)
                 start += 1
         self.world.physics_time = float(self._clock[1])
+
+    def _context(self) -> np.ndarray:
+        """The kernel's world record over the arrays as they are now (a grown cell list moves the
+        pool; a new body, the records)."""
+        arrays = self.world_arrays
+        return make_context(
+            bodies=self._records,
+            cells=arrays.cells,
+            landblock_index=arrays.landblock_index,
+            shadow_pool=arrays.shadow_pool,
+            heads=self._grid_heads,
+            grid=self._grid,
+            anims=self._animations.anims,
+            pos_frames=self._animations.pos_frames,
+            hooks=self._animations.hooks,
+            clock=self._clock,
+            log=self._log,
+            moves=self._moves,
+            counters=self._counters,
+            journal=self._journal,
+            owed=self._owed,
+        )
 
     def _run_owed_hooks(self, deferred: list[list[int]]) -> None:
         """Run the AnimDone hooks the kernel's steps queued in ``deferred`` (the rows of its

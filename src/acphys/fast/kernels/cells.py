@@ -14,6 +14,7 @@ import math
 from numba import njit
 
 from acphys.constants import CELL_LENGTH, MAX_LCOORD
+from acphys.fast.kernels.context import cells_of, landblock_index_of
 from acphys.fast.kernels.frame import adjust_to_outside_lcoord, f32, lcoord_to_gid
 from acphys.fast.layout import MAX_CELLS
 
@@ -70,7 +71,7 @@ def cell_array_clear(tr):
 
 
 @njit(cache=True, _nrt=False)
-def cell_array_add(tr, landblock_index, cell_id):
+def cell_array_add(w, tr, cell_id):
     """Append ``cell_id`` unless it is there; False when the array is full (the step bails).
 
     Port of :meth:`acphys.world.obj_cell.CellArray.add_cell`.
@@ -82,25 +83,25 @@ def cell_array_add(tr, landblock_index, cell_id):
     if tr.num_cells >= MAX_CELLS:
         return False
     tr.cell_ids[tr.num_cells] = cell_id
-    tr.cells[tr.num_cells] = cell_index(landblock_index, cell_id)
+    tr.cells[tr.num_cells] = cell_index(landblock_index_of(w), cell_id)
     tr.num_cells += 1
     return True
 
 
 @njit(cache=True, _nrt=False)
-def add_outside_cell(tr, landblock_index, x, y):
+def add_outside_cell(w, tr, x, y):
     """Add the land cell at global lcoord ``(x, y)`` when it is inside the world.
 
     Port of :meth:`acphys.world.land_cell.LandCell.add_outside_cell`.
     Retail: CLandCell::add_outside_cell @ 0x00532EC0 (acclient.c:354974)
     """
     if 0 <= x < MAX_LCOORD and 0 <= y < MAX_LCOORD:
-        return cell_array_add(tr, landblock_index, lcoord_to_gid(x, y))
+        return cell_array_add(w, tr, lcoord_to_gid(x, y))
     return True
 
 
 @njit(cache=True, _nrt=False)
-def check_add_cell_boundary(tr, landblock_index, px, py, x, y, incell_max, incell_min):
+def check_add_cell_boundary(w, tr, px, py, x, y, incell_max, incell_min):
     """Add the neighbours of cell ``(x, y)`` a circle at ``(px, py)`` within it reaches.
 
     Port of :meth:`acphys.world.land_cell.LandCell.check_add_cell_boundary`.
@@ -108,26 +109,26 @@ def check_add_cell_boundary(tr, landblock_index, px, py, x, y, incell_max, incel
     """
     ok = True
     if px > incell_max:
-        ok &= add_outside_cell(tr, landblock_index, x + 1, y)
+        ok &= add_outside_cell(w, tr, x + 1, y)
         if py > incell_max:
-            ok &= add_outside_cell(tr, landblock_index, x + 1, y + 1)
+            ok &= add_outside_cell(w, tr, x + 1, y + 1)
         if py < incell_min:
-            ok &= add_outside_cell(tr, landblock_index, x + 1, y - 1)
+            ok &= add_outside_cell(w, tr, x + 1, y - 1)
     if px < incell_min:
-        ok &= add_outside_cell(tr, landblock_index, x - 1, y)
+        ok &= add_outside_cell(w, tr, x - 1, y)
         if py > incell_max:
-            ok &= add_outside_cell(tr, landblock_index, x - 1, y + 1)
+            ok &= add_outside_cell(w, tr, x - 1, y + 1)
         if py < incell_min:
-            ok &= add_outside_cell(tr, landblock_index, x - 1, y - 1)
+            ok &= add_outside_cell(w, tr, x - 1, y - 1)
     if py > incell_max:
-        ok &= add_outside_cell(tr, landblock_index, x, y + 1)
+        ok &= add_outside_cell(w, tr, x, y + 1)
     if py < incell_min:
-        ok &= add_outside_cell(tr, landblock_index, x, y - 1)
+        ok &= add_outside_cell(w, tr, x, y - 1)
     return ok
 
 
 @njit(cache=True, _nrt=False)
-def add_all_outside_cells(tr, landblock_index, cell_id):
+def add_all_outside_cells(w, tr, cell_id):
     """Once per array: every land cell the global spheres (in ``cell_id``'s landblock) overlap.
 
     Port of :meth:`acphys.world.land_cell.LandCell.add_all_outside_cells` (the kernel always has
@@ -146,20 +147,20 @@ def add_all_outside_cells(tr, landblock_index, cell_id):
         in_x = f32(point[0] - math.floor(point[0] / CELL_LENGTH) * CELL_LENGTH)
         in_y = f32(point[1] - math.floor(point[1] / CELL_LENGTH) * CELL_LENGTH)
         max_rad = f32(CELL_LENGTH - radius)
-        ok &= add_outside_cell(tr, landblock_index, lx, ly)
-        ok &= check_add_cell_boundary(tr, landblock_index, in_x, in_y, lx, ly, max_rad, radius)
+        ok &= add_outside_cell(w, tr, lx, ly)
+        ok &= check_add_cell_boundary(w, tr, in_x, in_y, lx, ly, max_rad, radius)
     return ok
 
 
 @njit(cache=True, _nrt=False)
-def point_in_poly2d(cells, k, p, px, py):
+def point_in_poly2d(w, k, p, px, py):
     """Whether ``(px, py)`` lies inside triangle ``p`` of cell ``k`` projected on the xy plane
     (side POSITIVE: a positive cross value is outside).
 
     Port of :meth:`acphys.geometry.polygon.Polygon.point_in_poly2D`.
     Retail: CPolygon::point_in_poly2D @ 0x00538060 (acclient.c:359419)
     """
-    vertex = cells[k].vertex
+    vertex = cells_of(w)[k].vertex
     fx, fy = vertex[p, 0, 0], vertex[p, 0, 1]
     for i in range(2, -1, -1):
         vx, vy = vertex[p, i, 0], vertex[p, i, 1]
@@ -173,29 +174,30 @@ def point_in_poly2d(cells, k, p, px, py):
 
 
 @njit(cache=True, _nrt=False)
-def find_terrain_poly(cells, k, px, py):
+def find_terrain_poly(w, k, px, py):
     """The first of cell ``k``'s triangles whose xy projection holds the point, or -1.
 
     Port of :meth:`acphys.world.land_cell.LandCell.find_terrain_poly`.
     Retail: CLandCell::find_terrain_poly @ 0x00532CF0 (acclient.c:354858)
     """
-    for p in range(cells[k].num_polys):
-        if point_in_poly2d(cells, k, p, px, py):
+    for p in range(cells_of(w)[k].num_polys):
+        if point_in_poly2d(w, k, p, px, py):
             return p
     return -1
 
 
 @njit(cache=True, _nrt=False)
-def point_in_cell(cells, k, px, py):
+def point_in_cell(w, k, px, py):
     """Whether the landblock-local point lies over one of cell ``k``'s triangles.
 
     Port of :meth:`acphys.world.land_cell.LandCell.point_in_cell` (for cells with terrain; a
     cell without is its 24-m square, low edges closed).
     Retail: CLandCell::point_in_cell @ 0x00532D40 (acclient.c:354880)
     """
-    if cells[k].num_polys == 0:
-        low = (cells[k].cell_id & 0xFFFF) - 1
+    cell = cells_of(w)[k]
+    if cell.num_polys == 0:
+        low = (cell.cell_id & 0xFFFF) - 1
         x0 = (low // 8) * CELL_LENGTH
         y0 = (low % 8) * CELL_LENGTH
         return x0 <= px < x0 + CELL_LENGTH and y0 <= py < y0 + CELL_LENGTH
-    return find_terrain_poly(cells, k, px, py) >= 0
+    return find_terrain_poly(w, k, px, py) >= 0

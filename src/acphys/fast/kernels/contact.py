@@ -25,6 +25,7 @@ from numba import njit
 
 from acphys.constants import EPSILON
 from acphys.fast.kernels.cells import BAIL, R_CLIMB, R_FULL, R_ROOT, R_SHAPE, bail
+from acphys.fast.kernels.context import bodies_of
 from acphys.fast.kernels.frame import f32, get_block_offset, v_normalize_check_small
 from acphys.fast.kernels.path import (
     IT_PLACEMENT,
@@ -64,13 +65,13 @@ def collides_with_sphere(dx, dy, dz, radsum):
 
 
 @njit(cache=True, _nrt=False)
-def out_of_reach(bodies, tr, j):
+def out_of_reach(w, tr, j):
     """Whether every moving sphere at ``check_pos`` misses every sphere of body ``j`` by more than
     ``REACH_MARGIN`` (the reference's shortcut past ``intersects_sphere``).
 
     Port of :meth:`acphys.body.reports.CollisionReports.out_of_reach`.
     """
-    other = bodies[j]
+    other = bodies_of(w)[j]
     m = other.m
     ox, oy, oz = other.origin[0], other.origin[1], other.origin[2]
     if (tr.check_cell_id >> 16) != (other.cell_id >> 16):
@@ -94,7 +95,7 @@ def out_of_reach(bodies, tr, j):
 
 
 @njit(cache=True, _nrt=False)
-def placed_sphere(bodies, tr, j, s):
+def placed_sphere(w, tr, j, s):
     """Body ``j``'s sphere ``s`` at its position and scale, in ``check_pos``'s block:
     ``(x, y, z, radius)``.
 
@@ -102,7 +103,7 @@ def placed_sphere(bodies, tr, j, s):
     the scaled centre, then the block offset).
     Retail: CSphere::intersects_sphere @ 0x00537FD0 (acclient.c:359389)
     """
-    other = bodies[j]
+    other = bodies_of(w)[j]
     scale = other.scale
     vx = f32(other.sphere[s, 0] * scale)
     vy = f32(other.sphere[s, 1] * scale)
@@ -298,7 +299,7 @@ def step_sphere_down(tr, ox, oy, oz, radius, dx, dy, dz, radsum):
 
 
 @njit(cache=True, _nrt=False)
-def intersects_sphere(bodies, tr, j, s, ethereal):
+def intersects_sphere(w, tr, j, s, ethereal):
     """Test the moving spheres against body ``j``'s sphere ``s`` and respond (``ethereal``: the
     sweep's ``obstruction_ethereal``).
 
@@ -306,7 +307,7 @@ def intersects_sphere(bodies, tr, j, s, ethereal):
     creature (a covered body has no weenie, and a missile obstacle is passed by before this).
     Retail: CSphere::intersects_sphere @ 0x00537A80 (acclient.c:359156)
     """
-    ox, oy, oz, radius = placed_sphere(bodies, tr, j, s)
+    ox, oy, oz, radius = placed_sphere(w, tr, j, s)
     dx = f32(tr.global_sphere[0, 0] - ox)
     dy = f32(tr.global_sphere[0, 1] - oy)
     dz = f32(tr.global_sphere[0, 2] - oz)
@@ -372,7 +373,7 @@ def add_object(tr, j):
 
 
 @njit(cache=True, _nrt=False)
-def body_find_obj_collisions(bodies, tr, j):
+def body_find_obj_collisions(w, tr, j):
     """Collide the sweep's spheres with body ``j`` (found through a cell's shadow list); BAIL for
     what the reference path must do.
 
@@ -381,23 +382,23 @@ def body_find_obj_collisions(bodies, tr, j):
     exemption, and a static body bails (it reports as the environment).
     Retail: CPhysicsObj::FindObjCollisions @ 0x0050F050 (acclient.c:316158)
     """
-    other = bodies[j]
+    other = bodies_of(w)[j]
     state = other.state
     if state & PS_ETHEREAL and state & PS_IGNORE_COLLISIONS:
         return OK
     if not other.collider:
         return bail(tr, R_SHAPE)
-    mover_ethereal = bodies[tr.oi_body].state & PS_ETHEREAL
+    mover_ethereal = bodies_of(w)[tr.oi_body].state & PS_ETHEREAL
     ethereal = bool(state & PS_ETHEREAL or (mover_ethereal and not state & PS_STATIC))
     if ethereal and tr.step_down:
         return OK
     if state & PS_MISSILE:  # OBJECTINFO::missile_ignore: a missile obstacle is passed through
         return OK
-    if not tr.step_down and out_of_reach(bodies, tr, j):
+    if not tr.step_down and out_of_reach(w, tr, j):
         return OK
     result = OK
     for s in range(other.num_sphere):
-        result = intersects_sphere(bodies, tr, j, s, ethereal)
+        result = intersects_sphere(w, tr, j, s, ethereal)
         if result != OK:
             break
     if result in (BAIL, OK) or tr.step_down:

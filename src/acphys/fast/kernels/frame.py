@@ -308,7 +308,7 @@ def frame_set_rotate(origin, q, m, new_q):
     return q, m
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_grotate(origin, q, m, w):
     """Rotate by the global axis-angle vector ``w`` (radians); ``(q, m)`` unchanged when |w| < EPSILON.
 
@@ -349,7 +349,7 @@ def frame_rotate(origin, q, m, w):
     return frame_grotate(origin, q, m, frame_localtoglobalvec(m, w))
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_interpolate_rotation(origin, q, m, start_q, end_q, t):
     """Slerp from ``start_q`` to ``end_q`` by ``t`` along the shorter arc, set on the frame ``origin, q, m``.
 
@@ -402,7 +402,7 @@ def frame_interpolate_origin(start_origin, end_origin, t):
 # -- Frame: composition ---------------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_combine(origin, q, m, o1, q1, m1, o2, q2):
     """The frame ``origin, q, m`` set to ``f1 ∘ f2``; returns ``(origin, q, m)``.
 

@@ -188,7 +188,7 @@ def store_sequence(record: np.void, sequence: Sequence, animations: list[Animati
 # -- playback --------------------------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def apply_physics(velocity, omega, origin, q, m, quantum, sign):
     """The frame ``origin, q, m`` moved by ``|quantum| · velocity`` and turned by ``|quantum| · omega``
     (signed as ``sign``); returns ``(origin, q, m)``.

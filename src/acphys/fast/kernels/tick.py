@@ -300,7 +300,7 @@ def set_on_walkable(b, on, events):
     return 0, events
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def set_frame(b, origin, q, m):
     """Make the frame the body's (a sound origin with a NaN quaternion commits an all-zero one).
 
@@ -336,7 +336,7 @@ def calc_friction(b, quantum, velocity_mag2):
     v[0], v[1], v[2] = f32(factor * v[0]), f32(factor * v[1]), f32(factor * v[2])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def update_physics_internal(b, quantum, origin, q, m):
     """Euler-integrate velocity, acceleration and omega into the candidate; returns it.
 

@@ -61,13 +61,18 @@ def grid_remove(bodies, heads, i):
 
 @njit(cache=True, _nrt=False)
 def grid_place(bodies, heads, i):
-    """File body ``i`` by the square under its origin; a body without shadows is not filed."""
-    grid_remove(bodies, heads, i)
+    """File body ``i`` by the square under its origin; a body without shadows is not filed. A body
+    already in its square's bucket stays where it is in the chain (searches do not depend on
+    the chains' order: they count the bodies they find, or look for any)."""
     b = bodies[i]
     if b.num_shadow <= 0 or not b.cell_id:
+        grid_remove(bodies, heads, i)
         return
     x0, y0 = block_origin(b.cell_id)
     bucket = bucket_of(math.floor((x0 + b.origin[0]) / TILE), math.floor((y0 + b.origin[1]) / TILE))
+    if bucket == b.grid_bucket:
+        return
+    grid_remove(bodies, heads, i)
     head = heads[bucket]
     b.grid_bucket = bucket
     b.grid_prev = -1

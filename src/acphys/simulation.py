@@ -9,12 +9,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
+from acphys.arrays import BodyArrays, body_arrays
 from acphys.constants import HUGE_QUANTUM, MIN_QUANTUM
 from acphys.physics_obj import PhysicsObj
 from acphys.world.world import World
 
 if TYPE_CHECKING:
-    from acphys.arrays import BodyArrays
     from acphys.scenario.live import ScenarioParts
 
 #: ``CObjectMaint::object_table``, the table ``CPhysics::UseTime`` walks, is a
@@ -100,6 +100,11 @@ class Physics:
 
     def sync_objects(self) -> None:
         """Make every body's object current (the reference path's always are)."""
+
+    def body_arrays(self, bodies: list[PhysicsObj]) -> BodyArrays:
+        """The state of ``bodies`` as :class:`~acphys.arrays.BodyArrays`, current whether or not
+        their objects are (the reference path's objects are the state)."""
+        return body_arrays(bodies)
 
     def set_trace_writer(self, writer: Any) -> None:
         """The trace being written, if any (the reference path's bodies write their own records)."""
@@ -409,11 +414,7 @@ class Simulation:
         order (``names``): ``positions`` (map-wide, (N, 3)), ``origins`` (landblock-local) and
         ``cell_ids``, ``orientations`` ((N, 4), w first), ``velocities``, ``cached_velocities``,
         ``omegas`` and ``transient_states``; see :class:`acphys.arrays.BodyArrays`."""
-        from acphys.arrays import body_arrays
-
-        if not self._in_use_time:
-            self.physics.sync_objects()  # the fast engine's bodies written back
-        return body_arrays(self._bodies.values())
+        return self.physics.body_arrays(list(self._bodies.values()))
 
     def positions(self) -> Any:
         """Every body's origin in the map-wide frame, an (N, 3) array in :attr:`bodies` order
@@ -443,10 +444,26 @@ class Simulation:
     def time(self) -> float:
         return self.world.cur_time
 
-    def step(self) -> None:
+    def step(self, sync: bool = True) -> None:
         """One driver tick: advance the clock, apply due events, run ``CPhysics::UseTime``; every
-        body's object is current afterwards."""
+        body's object is current afterwards.
+
+        With ``sync=False`` on the fast engine, the objects of the bodies its kernel stepped lag
+        behind until :meth:`sync` (or a call that needs them: an event, a new body, ``run``'s
+        end); :meth:`arrays` stays current. Writing every object back and reading it again costs
+        about as much as a hundred kernel steps a body, so a loop of many fast steps reads
+        :meth:`arrays` and syncs only when it needs the objects. Change a body's object only
+        after a sync: a change to a lagging object is overwritten. The reference engine's
+        objects are always current.
+        """
         self._tick()
+        if sync:
+            self.physics.sync_objects()
+
+    def sync(self) -> None:
+        """Bring every body's object up to date (after ``step(sync=False)`` on the fast engine)."""
+        if self._in_use_time:
+            raise RuntimeError("sync() is called between steps, not from a callback during one")
         self.physics.sync_objects()
 
     def _tick(self) -> None:

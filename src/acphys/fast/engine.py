@@ -22,7 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from acphys.constants import MIN_QUANTUM
+from acphys.arrays import BodyArrays, body_arrays
+from acphys.constants import BLOCK_LENGTH, MIN_QUANTUM
 from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
@@ -374,6 +375,37 @@ class FastPhysics(Physics):
         user may change them in between)."""
         self.flush()
         self._reload = True
+
+    def body_arrays(self, bodies: list[PhysicsObj]) -> BodyArrays:
+        """The state of ``bodies`` read from the kernel's records, which hold every body of the
+        table as it is whether or not its object was written back (a body the kernel has not
+        read, from its object)."""
+        index = self._index
+        rows = np.fromiter((index.get(id(body), -1) for body in bodies), dtype=np.intp, count=len(bodies))
+        if self._arrays is None or self._reload or (rows < 0).any():
+            return body_arrays(bodies)
+        records = self._records
+
+        def column(name: str) -> np.ndarray:
+            return records[name][rows]  # a copy
+
+        cell_ids = column("cell_id").astype(np.uint32)
+        origins = column("origin")
+        blocks = cell_ids >> 16
+        positions = origins.copy()
+        positions[:, 0] = (blocks >> 8).astype(np.float64) * BLOCK_LENGTH + origins[:, 0]
+        positions[:, 1] = (blocks & 0xFF).astype(np.float64) * BLOCK_LENGTH + origins[:, 1]
+        return BodyArrays(
+            names=tuple(body.name for body in bodies),
+            cell_ids=cell_ids,
+            origins=origins,
+            positions=positions,
+            orientations=column("q"),
+            velocities=column("velocity"),
+            cached_velocities=column("cached_velocity"),
+            omegas=column("omega"),
+            transient_states=column("transient").astype(np.uint32),
+        )
 
     def apply_events(self, events: list[Any], body_named: Any) -> None:
         """Apply events to up-to-date objects, then read every body again."""

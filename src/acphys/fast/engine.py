@@ -145,7 +145,7 @@ class FastPhysics(Physics):
         for i in range(len(self._bodies)):
             self._load(i)
         transition_from_pool(self._transition, self.world_arrays)
-        self._grid[grid.MAX_REACH] = float(self._records["reach"].max(initial=0.0))
+        self._grid[grid.MAX_REACH] = float(grid.reaches_now(self._records).max(initial=0.0))
         grid.grid_place_all(self._records, self._grid_heads)
         self._clock[1] = self.world.physics_time
         self._reload = False
@@ -305,7 +305,7 @@ class FastPhysics(Physics):
         others = {i} | partners
         for j in sorted(others):
             self._load(j)
-            reach = float(self._records[j]["reach"])
+            reach = float(grid.reaches_now(self._records[j : j + 1])[0])
             self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
             grid.grid_place(self._records, self._grid_heads, j)
         for k in touched:  # the bodies whose slots the step's removals and additions moved

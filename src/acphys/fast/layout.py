@@ -60,6 +60,7 @@ BODY = np.dtype(
         ("step_events", "u1"),  # the object holds events for the next step's record (step_events)
         ("has_parent", "u1"),
         ("reach", "f8"),  # how far its spheres reach from its origin (+ REACH_MARGIN), for the grid
+        ("hreach", "f8"),  # the same across the ground while the body is upright (acphys.fast.kernels.grid)
         ("collider", "u1"),  # a body of spheres only, no weenie: the kernel can answer for it
         ("on_collision", "u1"),  # a user's collision callback: reports to it are the reference's
         ("colliding_with_environment", "u1"),

@@ -88,6 +88,11 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         max(((s.center.length() + s.radius) * body.scale for s in spheres), default=0.0) * (1.0 + 1e-6)
         + REACH_MARGIN
     )
+    record["hreach"] = (
+        max((((s.center.x**2 + s.center.y**2) ** 0.5 + s.radius) * body.scale for s in spheres), default=0.0)
+        * (1.0 + 1e-6)
+        + REACH_MARGIN
+    )
     if parts is not None:
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height

@@ -9,12 +9,21 @@ metres) under its origin, in a hash of squares whose chains run through the reco
 reach of its spheres plus the longest reach of any body (``grid[MAX_REACH]``). Any body that
 could answer other than OK is found that way, and the kernel hands such a step to the reference
 path; if none could, the reference would have answered OK too, whatever its list order.
+
+The searches are across the ground, so a body's reach there is what counts (:func:`reach_now`):
+while it stands upright (its quaternion turns it about z alone: ``x`` and ``y`` are exactly
+zero, as a yaw, a turn about z or a slerp between two such keeps them), its spheres' centres
+keep their distance from its vertical axis, and it reaches ``hreach`` (a human: 0.48 m);
+otherwise as far as any centre is from its origin, ``reach`` (a human: 1.83 m).
+``grid[MAX_REACH]`` is the longest such reach of any body since the records were read, raised
+after each update that lengthens one.
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from acphys.constants import BLOCK_LENGTH
@@ -39,6 +48,19 @@ def block_origin(cell_id):
 def bucket_of(tx, ty):
     """The hash bucket of square ``(tx, ty)``."""
     return ((tx * 73856093) ^ (ty * 19349663)) & (BUCKETS - 1)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def reach_now(b):
+    """How far body record ``b``'s spheres reach across the ground from its origin, as it is
+    turned now (``hreach`` upright, else ``reach``)."""
+    return b.hreach if b.q[1] == 0.0 and b.q[2] == 0.0 else b.reach
+
+
+def reaches_now(records: np.ndarray) -> np.ndarray:
+    """:func:`reach_now` of every record (for the engine, in NumPy)."""
+    upright = (records["q"][:, 1] == 0.0) & (records["q"][:, 2] == 0.0)
+    return np.where(upright, records["hreach"], records["reach"])
 
 
 @njit(cache=True, _nrt=False)

@@ -62,7 +62,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalize_check_small,
 )
-from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of
+from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of, reach_now
 from acphys.fast.kernels.path import (
     IT_INITIAL_PLACEMENT,
     IT_PLACEMENT,
@@ -272,7 +272,7 @@ def nobody_near(w, tr, x0, y0, x1, y1):
                 other = bodies[j]
                 if j != tr.oi_body:
                     ox, oy = block_origin(other.cell_id)
-                    x, y, r = ox + other.origin[0], oy + other.origin[1], other.reach
+                    x, y, r = ox + other.origin[0], oy + other.origin[1], reach_now(other)
                     if x0 - r <= x <= x1 + r and y0 - r <= y <= y1 + r:
                         return False
                 j = other.grid_next

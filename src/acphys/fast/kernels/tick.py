@@ -46,6 +46,7 @@ from acphys.fast.kernels.context import (
     cells_of,
     clock_of,
     counters_of,
+    grid_of,
     heads_of,
     hooks_of,
     journal_of,
@@ -65,7 +66,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalized,
 )
-from acphys.fast.kernels.grid import block_origin, grid_place
+from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
@@ -410,18 +411,21 @@ def update_position_internal(w, b, quantum):
 
 
 @njit(cache=True, _nrt=False)
-def _lonely_sweep(w, tr, b, end):
+def _lonely_sweep(w, tr, b, end, end_q):
     """Whether no other body is filed near anywhere this sweep can take the spheres. Across the
     ground, a sweep moves its candidate only along its steps (bent, never lengthened, by the
     contact plane and the sliding normal), back towards where it was (rollbacks, edge slides),
     or along a crease by less than a step (cliff slides); lifts, landings and steps up and down
     are vertical. So the spheres stay within the box around the path's two ends widened by the
-    body's reach and the path's length (and half a metre). Not retail: a shortcut past
+    body's reach and the path's length (and half a metre): its reach upright when it turns
+    from upright to upright (every orientation of the sweep lies on the slerp between the two,
+    upright too; :func:`~acphys.fast.kernels.grid.reach_now`). Not retail: a shortcut past
     ``find_obj_collisions``, whose every answer is then OK (:func:`~acphys.fast.kernels.sweep.
     nobody_near`)."""
     x0, y0 = block_origin(b.cell_id)
     bx, by, ex, ey = x0 + b.origin[0], y0 + b.origin[1], x0 + end[0], y0 + end[1]
-    widen = b.reach + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
+    reach = b.hreach if end_q[1] == 0.0 and end_q[2] == 0.0 else b.reach
+    widen = max(reach_now(b), reach) + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
     return nobody_near(
         w, tr, min(bx, ex) - widen, min(by, ey) - widen, max(bx, ex) + widen, max(by, ey) + widen
     )
@@ -495,7 +499,7 @@ def transition(w, tr, i, origin, q, m):
     put(tr.curr_m, b.m)
     cache_global_curr_center(tr)
     tr.insert_type = 0
-    tr.lonely = _lonely_sweep(w, tr, b, origin)
+    tr.lonely = _lonely_sweep(w, tr, b, origin, q)
     if ts & TS_STATIONARY_STUCK:
         tr.frames_stationary_fall = 3
     elif ts & TS_STATIONARY_STOP:
@@ -972,4 +976,5 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
             return FALLBACK, i
         b.stale = True
         grid_place(bodies, heads_of(w), i)
+        grid_of(w)[MAX_REACH] = max(grid_of(w)[MAX_REACH], reach_now(b))
     return DONE, n

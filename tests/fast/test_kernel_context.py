@@ -1,0 +1,56 @@
+"""The kernels' world record (:mod:`acphys.fast.kernels.context`): views over the engine's arrays,
+refusals of arrays it cannot view, and a type that changes with the records' layouts."""
+
+from __future__ import annotations
+
+import hashlib
+
+import numpy as np
+import pytest
+from numba import njit
+
+from acphys.fast.kernels.context import ARRAYS, CONTEXT, bodies_of, journal_of, make_context
+from acphys.fast.layout import BODY, CELL
+
+
+def _arrays() -> dict[str, np.ndarray]:
+    shapes = {"anims": (2, 3), "pos_frames": (4, 7), "log": (5, 27), "moves": (5, 3), "journal": (6, 3)}
+    shapes["owed"] = (5, 5)
+    return {name: np.zeros(shapes.get(name, (3,)), dtype=dtype) for name, dtype, _ in ARRAYS}
+
+
+@njit(cache=True, _nrt=False)
+def _touch(context, i):
+    w = context[0]
+    b = bodies_of(w)[i]
+    b.origin[1] += 2.5  # written through to the engine's array
+    journal_of(w)[1, 2] = 7
+    return len(bodies_of(w)), b.origin[0]
+
+
+def test_views_read_and_write_the_engines_arrays() -> None:
+    arrays = _arrays()
+    arrays["bodies"]["origin"][:, 0] = [10.0, 11.0, 12.0]
+    context = make_context(**arrays)
+    assert _touch(context, 1) == (3, 11.0)
+    assert arrays["bodies"]["origin"][:, 1].tolist() == [0.0, 2.5, 0.0]
+    assert arrays["journal"][1].tolist() == [0, 0, 7]
+    assert context["journal_rows"][0] == 6 and context["journal_cols"][0] == 3
+
+
+def test_an_array_the_kernels_cannot_view_is_refused() -> None:
+    arrays = _arrays()
+    arrays["counters"] = np.zeros(8, dtype=np.int32)
+    with pytest.raises(ValueError, match=r"kernel array counters: int32 .* not a C-contiguous int64 array"):
+        make_context(**arrays)
+    arrays = _arrays()
+    arrays["log"] = np.zeros((27, 5)).T  # the right shape, Fortran order
+    with pytest.raises(ValueError, match="kernel array log"):
+        make_context(**arrays)
+
+
+def test_the_records_type_is_named_for_the_layouts() -> None:
+    """A kernel compiled against other layouts is not taken from Numba's cache: the record's type
+    (its field names) changes with them."""
+    layouts = hashlib.sha256(repr([(d.descr, d.itemsize) for d in (BODY, CELL)]).encode()).hexdigest()
+    assert CONTEXT.names[-1] == f"layouts_{layouts[:16]}"

@@ -414,7 +414,10 @@ class Simulation:
         order (``names``): ``positions`` (map-wide, (N, 3)), ``origins`` (landblock-local) and
         ``cell_ids``, ``orientations`` ((N, 4), w first), ``velocities``, ``cached_velocities``,
         ``omegas`` and ``transient_states``; see :class:`acphys.arrays.BodyArrays`."""
-        return self.physics.body_arrays(list(self._bodies.values()))
+        bodies = list(self._bodies.values())
+        if self._in_use_time:  # a callback: the engine wrote every object back before the step
+            return body_arrays(bodies)
+        return self.physics.body_arrays(bodies)
 
     def positions(self) -> Any:
         """Every body's origin in the map-wide frame, an (N, 3) array in :attr:`bodies` order

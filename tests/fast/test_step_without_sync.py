@@ -87,3 +87,28 @@ def test_sync_is_refused_from_a_callback_during_a_step() -> None:
         for _ in range(3):  # the first tick starts the clock: its bodies take no step
             sim.step()
     assert len(calls) == 1
+
+
+def test_arrays_from_a_callback_are_the_objects_the_step_is_changing() -> None:
+    """A body with a callback steps on the reference path, after the fast engine wrote every
+    object back: ``arrays()`` read from a callback holds the stepping body as it is after that
+    step, on either engine alike."""
+    seen: dict[str, list[list[float]]] = {}
+    for engine in ("reference", "fast"):
+        sim = acphys.load_scenario(engine=engine)
+        rows = seen[engine] = []
+
+        def during(
+            body: acphys.PhysicsObj, quantum: float, sim: acphys.Simulation = sim, rows: list = rows
+        ) -> None:
+            if body.name == "walker":
+                arrays = sim.arrays()
+                row = arrays.index("walker")
+                assert arrays.origins[row].tolist() == np.asarray(body.position.frame.origin).tolist()
+                rows.append(arrays.positions.ravel().tolist())
+
+        sim.on_step(during)
+        for _ in range(TICKS):
+            sim.step(sync=False)
+    assert seen["fast"] == seen["reference"]
+    assert len(seen["fast"]) > 10  # the walker's steps (at most 30 a second)

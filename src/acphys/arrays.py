@@ -17,9 +17,9 @@ if TYPE_CHECKING:  # NumPy is imported on first use: ``import acphys`` does not 
 
     from acphys.physics_obj import PhysicsObj
 
-#: Values per body in the table :func:`body_arrays` builds: cell id, origin, global origin,
-#: quaternion, velocity, cached velocity, omega, transient state.
-_COLUMNS = 1 + 3 + 3 + 4 + 3 + 3 + 3 + 1
+#: Values per body in the table :func:`body_arrays` builds: cell id, origin, quaternion,
+#: velocity, cached velocity, omega, transient state.
+_COLUMNS = 1 + 3 + 4 + 3 + 3 + 3 + 1
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,39 @@ class BodyArrays:
     #: ``transient_state`` bits (:class:`~acphys.flags.TransientState`), shape (N,), uint32.
     transient_states: np.ndarray
 
+    @classmethod
+    def of_columns(
+        cls,
+        names: tuple[str, ...],
+        cell_ids: np.ndarray,
+        origins: np.ndarray,
+        orientations: np.ndarray,
+        velocities: np.ndarray,
+        cached_velocities: np.ndarray,
+        omegas: np.ndarray,
+        transient_states: np.ndarray,
+    ) -> BodyArrays:
+        """The arrays from their columns (owned by the result), the map-wide ``positions`` made
+        from ``cell_ids`` and ``origins``."""
+        import numpy as np
+
+        cell_ids = cell_ids.astype(np.uint32)
+        blocks = cell_ids >> 16
+        positions = origins.copy()
+        positions[:, 0] = (blocks >> 8).astype(np.float64) * BLOCK_LENGTH + origins[:, 0]
+        positions[:, 1] = (blocks & 0xFF).astype(np.float64) * BLOCK_LENGTH + origins[:, 1]
+        return cls(
+            names=names,
+            cell_ids=cell_ids,
+            origins=origins,
+            positions=positions,
+            orientations=orientations,
+            velocities=velocities,
+            cached_velocities=cached_velocities,
+            omegas=omegas,
+            transient_states=transient_states.astype(np.uint32),
+        )
+
     def __len__(self) -> int:
         return len(self.names)
 
@@ -74,15 +107,11 @@ def body_arrays(bodies: Iterable[PhysicsObj]) -> BodyArrays:
         cell_id = body.position.objcell_id
         frame = body.position.frame
         o, v, c, w = frame.origin, body.velocity, body.cached_velocity, body.omega
-        block = cell_id >> 16
         rows.append(
             (
                 cell_id,
                 o.x,
                 o.y,
-                o.z,
-                (block >> 8) * BLOCK_LENGTH + o.x,
-                (block & 0xFF) * BLOCK_LENGTH + o.y,
                 o.z,
                 frame.qw,
                 frame.qx,
@@ -101,16 +130,15 @@ def body_arrays(bodies: Iterable[PhysicsObj]) -> BodyArrays:
             )
         )
     table = np.array(rows, dtype=np.float64).reshape(len(rows), _COLUMNS)
-    return BodyArrays(
+    return BodyArrays.of_columns(
         names=tuple(names),
-        cell_ids=table[:, 0].astype(np.uint32),
+        cell_ids=table[:, 0],
         origins=table[:, 1:4].copy(),
-        positions=table[:, 4:7].copy(),
-        orientations=table[:, 7:11].copy(),
-        velocities=table[:, 11:14].copy(),
-        cached_velocities=table[:, 14:17].copy(),
-        omegas=table[:, 17:20].copy(),
-        transient_states=table[:, 20].astype(np.uint32),
+        orientations=table[:, 4:8].copy(),
+        velocities=table[:, 8:11].copy(),
+        cached_velocities=table[:, 11:14].copy(),
+        omegas=table[:, 14:17].copy(),
+        transient_states=table[:, 17],
     )
 
 

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from acphys.arrays import BodyArrays, body_arrays
-from acphys.constants import BLOCK_LENGTH, MIN_QUANTUM
+from acphys.constants import MIN_QUANTUM
 from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
@@ -389,22 +389,15 @@ class FastPhysics(Physics):
         def column(name: str) -> np.ndarray:
             return records[name][rows]  # a copy
 
-        cell_ids = column("cell_id").astype(np.uint32)
-        origins = column("origin")
-        blocks = cell_ids >> 16
-        positions = origins.copy()
-        positions[:, 0] = (blocks >> 8).astype(np.float64) * BLOCK_LENGTH + origins[:, 0]
-        positions[:, 1] = (blocks & 0xFF).astype(np.float64) * BLOCK_LENGTH + origins[:, 1]
-        return BodyArrays(
+        return BodyArrays.of_columns(
             names=tuple(body.name for body in bodies),
-            cell_ids=cell_ids,
-            origins=origins,
-            positions=positions,
+            cell_ids=column("cell_id"),
+            origins=column("origin"),
             orientations=column("q"),
             velocities=column("velocity"),
             cached_velocities=column("cached_velocity"),
             omegas=column("omega"),
-            transient_states=column("transient").astype(np.uint32),
+            transient_states=column("transient"),
         )
 
     def apply_events(self, events: list[Any], body_named: Any) -> None:

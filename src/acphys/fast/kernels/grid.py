@@ -51,10 +51,16 @@ def bucket_of(tx, ty):
 
 
 @njit(cache=True, inline="always", _nrt=False)
+def reach_turned(b, q):
+    """How far body record ``b``'s spheres reach across the ground from its origin when turned
+    by quaternion ``q`` (``hreach`` upright, else ``reach``)."""
+    return b.hreach if q[1] == 0.0 and q[2] == 0.0 else b.reach
+
+
+@njit(cache=True, inline="always", _nrt=False)
 def reach_now(b):
-    """How far body record ``b``'s spheres reach across the ground from its origin, as it is
-    turned now (``hreach`` upright, else ``reach``)."""
-    return b.hreach if b.q[1] == 0.0 and b.q[2] == 0.0 else b.reach
+    """:func:`reach_turned` as body record ``b`` is turned now."""
+    return reach_turned(b, b.q)
 
 
 def reaches_now(records: np.ndarray) -> np.ndarray:

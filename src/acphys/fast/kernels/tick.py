@@ -66,7 +66,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalized,
 )
-from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now
+from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import fill, put
@@ -424,8 +424,7 @@ def _lonely_sweep(w, tr, b, end, end_q):
     nobody_near`)."""
     x0, y0 = block_origin(b.cell_id)
     bx, by, ex, ey = x0 + b.origin[0], y0 + b.origin[1], x0 + end[0], y0 + end[1]
-    reach = b.hreach if end_q[1] == 0.0 and end_q[2] == 0.0 else b.reach
-    widen = max(reach_now(b), reach) + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
+    widen = max(reach_now(b), reach_turned(b, end_q)) + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
     return nobody_near(
         w, tr, min(bx, ex) - widen, min(by, ey) - widen, max(bx, ex) + widen, max(by, ey) + widen
     )

@@ -1,16 +1,13 @@
-"""The kernels' world record (:mod:`acphys.fast.kernels.context`): views over the engine's arrays,
-refusals of arrays it cannot view, and a type that changes with the records' layouts."""
+"""The kernels' world record (:mod:`acphys.fast.kernels.context`): views over the engine's arrays
+and refusals of arrays it cannot view."""
 
 from __future__ import annotations
-
-import hashlib
 
 import numpy as np
 import pytest
 from numba import njit
 
-from acphys.fast.kernels.context import ARRAYS, CONTEXT, bodies_of, journal_of, make_context
-from acphys.fast.layout import BODY, CELL
+from acphys.fast.kernels.context import ARRAYS, bodies_of, journal_of, make_context
 
 
 def _arrays() -> dict[str, np.ndarray]:
@@ -47,10 +44,3 @@ def test_an_array_the_kernels_cannot_view_is_refused() -> None:
     arrays["log"] = np.zeros((27, 5)).T  # the right shape, Fortran order
     with pytest.raises(ValueError, match="kernel array log"):
         make_context(**arrays)
-
-
-def test_the_records_type_is_named_for_the_layouts() -> None:
-    """A kernel compiled against other layouts is not taken from Numba's cache: the record's type
-    (its field names) changes with them."""
-    layouts = hashlib.sha256(repr([(d.descr, d.itemsize) for d in (BODY, CELL)]).encode()).hexdigest()
-    assert CONTEXT.names[-1] == f"layouts_{layouts[:16]}"

@@ -1,1 +1,5 @@
 """Numba kernels of the fast engine: ports of the reference engine's tick over records."""
+
+from acphys.fast.kernels.stamp import install
+
+install()  # before any kernel is defined: its cache is stamped by every kernel source

@@ -13,8 +13,6 @@ alive and does not reallocate while the kernel runs.
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 from numba import from_dtype, njit, types
 from numba.core import cgutils
@@ -49,16 +47,12 @@ def _fields() -> list[tuple[str, type]]:
         fields += [(name, np.int64), (f"{name}_rows", np.int64)]
         if ndim == 2:
             fields.append((f"{name}_cols", np.int64))
-    # The kernels see the records' layouts only through this record's type: a field named for them
-    # makes a new type when they change, so Numba's cache compiles every kernel again (a kernel
-    # whose source did not change would otherwise keep the old fields' offsets).
-    layouts = hashlib.sha256(repr([(d.descr, d.itemsize) for d in (BODY, CELL)]).encode()).hexdigest()
-    fields.append((f"layouts_{layouts[:16]}", np.int64))
     return fields
 
 
-#: The record: per array its address (``name``) and its extents (``name_rows``, ``name_cols``),
-#: and a field named for the layouts of the records (:data:`~acphys.fast.layout.BODY`, ``CELL``).
+#: The record: per array its address (``name``) and its extents (``name_rows``, ``name_cols``). A
+#: change of the records' layouts (:data:`~acphys.fast.layout.BODY`, ``CELL``) compiles every kernel
+#: again (:mod:`acphys.fast.kernels.stamp`).
 CONTEXT = np.dtype(_fields())
 
 

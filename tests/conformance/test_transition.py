@@ -22,6 +22,7 @@ from acphys.math.vector import Vector3 as V
 from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 from acphys.precision import f32
+from acphys.scenario import load_scenario
 from acphys.setup import Setup, human_setup
 from acphys.transition.transition import MAX_TRANSITION_LEVEL, Transition
 from acphys.world.static_objects import add_static_object
@@ -364,6 +365,33 @@ class TestBodySide:
             assert again.sphere_path.walk_interp == 0.25
         finally:
             Transition.cleanup_transition()
+
+    def test_each_world_has_a_pool_of_its_own(self) -> None:
+        # Retail's pool is the client's; a world is one simulation, so each has its own: what the
+        # sweeps of one simulation leave in a slot never reaches another's.
+        first, second = World(), World()
+        mine = Transition.make_transition(first)
+        Transition.cleanup_transition()
+        mine.sphere_path.walk_interp = 0.25
+        theirs = Transition.make_transition(second)
+        Transition.cleanup_transition()
+        assert theirs is not mine and theirs.sphere_path.walk_interp != 0.25
+        assert (mine.world, theirs.world) == (first, second)
+        assert Transition.pool(first)[0] is mine and Transition.pool(second)[0] is theirs
+        assert len(Transition.pool(first)) == MAX_TRANSITION_LEVEL and first.transition_pool[0] is mine
+
+    def test_a_scenario_loads_the_same_after_another_ran(self) -> None:
+        # The spinner hangs in the air: entering the world sweeps it in place, and SetPositionInternal
+        # copies the collision record's contact plane, which CollisionInfo::init leaves as the last
+        # sweep in the slot had it (acclient.c:311566). In a new world that is the all-zero plane,
+        # whatever another simulation in this process swept before.
+        before = load_scenario().body("spinner").contact_plane
+        other = load_scenario("hills")
+        other.run(until=0.5)
+        left = Transition.pool(other.world)[0].collision_info.contact_plane.N
+        assert (left.x, left.y, left.z) != (0.0, 0.0, 0.0)
+        after = load_scenario().body("spinner").contact_plane
+        assert (before.N, before.d) == (after.N, after.d) == (V(0.0, 0.0, 0.0), 0.0)
 
     def test_walkable_is_floor_z(self) -> None:
         assert PhysicsObj.is_valid_walkable(V(0.0, 0.0, FLOOR_Z))

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Iterator
 
 import numpy as np
 import pytest
@@ -30,6 +29,7 @@ from acphys.geometry.sphere import Sphere
 from acphys.math.vector import Vector3
 from acphys.scenario import load_scenario
 from acphys.transition.transition import Transition
+from acphys.world.world import World
 
 CASES = 400
 #: The fields the routines may write.
@@ -75,14 +75,9 @@ def _down(tr_array, ox, oy, oz, radius, dx, dy, dz, radsum):
 
 
 @pytest.fixture(scope="module")
-def world() -> Iterator[object]:
-    """A world for the pool's transitions; the process's pool is put back afterwards."""
-    saved = Transition._pool
-    Transition._pool = []
-    try:
-        yield load_scenario("ladder-01-fall").world
-    finally:
-        Transition._pool = saved
+def world() -> World:
+    """A world for the pool's transitions."""
+    return load_scenario("ladder-01-fall").world
 
 
 def _unit(rng: random.Random, z_low: float) -> tuple[float, float, float]:
@@ -159,12 +154,12 @@ def _compare(got: np.ndarray, want: np.ndarray, label: str) -> None:
         assert a.tobytes() == b.tobytes(), f"{label}: {name} {a} != {b}"
 
 
-def _run(world: object, seed: int, kernel_call, reference_call) -> str:
+def _run(world: World, seed: int, kernel_call, reference_call) -> str:
     """One case both ways; the answer it got (for the branch census)."""
     rng = random.Random(seed)
     tr_array, obstacle = _case(rng)
     transition_to_pool(tr_array, None, world)  # type: ignore[arg-type]
-    transit = Transition._pool[0]
+    transit = Transition.pool(world)[0]
     ox, oy, oz, r = obstacle
     sphere = Sphere(Vector3(ox, oy, oz), r)
     answer = kernel_call(tr_array, obstacle)
@@ -174,7 +169,7 @@ def _run(world: object, seed: int, kernel_call, reference_call) -> str:
     assert answer == int(expected), f"seed {seed}: kernel {answer}, reference {expected!r}"
     want = np.zeros(1, dtype=TRANSITION)
     want[0] = tr_array[0]
-    transition_from_pool(want, None)  # type: ignore[arg-type]
+    transition_from_pool(want, None, world)  # type: ignore[arg-type]
     _compare(tr_array, want, f"seed {seed}")
     return str(int(expected))
 
@@ -188,7 +183,7 @@ def _radsum(tr_array: np.ndarray, obstacle: tuple[float, ...]) -> float:
     return f32(obstacle[3] + tr_array[0]["global_sphere"][0][3] - EPSILON)
 
 
-def test_slide_sphere_skid(world: object) -> None:
+def test_slide_sphere_skid(world: World) -> None:
     """``CSphere::slide_sphere`` (acclient.c:358708), sphere 0 or 1, every branch."""
     answers = set()
     for seed in range(CASES):
@@ -206,7 +201,7 @@ def test_slide_sphere_skid(world: object) -> None:
     assert {"2", "4"} <= answers  # COLLIDED and SLID both reached
 
 
-def test_slide_sphere_normal(world: object) -> None:
+def test_slide_sphere_normal(world: World) -> None:
     """``CSphere::slide_sphere`` (acclient.c:359138) for sphere 1, and its slide (acclient.c:358898)."""
     answers = set()
     for seed in range(CASES):
@@ -228,7 +223,7 @@ def _radsum_of(path, sphere: Sphere) -> float:
     return f32(sphere.radius + path.global_sphere[0].radius - EPSILON)
 
 
-def test_collide_with_point(world: object) -> None:
+def test_collide_with_point(world: World) -> None:
     """``CSphere::collide_with_point`` (acclient.c:358807) without a perfect clip."""
     for seed in range(CASES // 4):
         s = seed % 2
@@ -245,7 +240,7 @@ def test_collide_with_point(world: object) -> None:
         assert _run(world, seed, kernel, reference) == "2"
 
 
-def test_step_sphere_down(world: object) -> None:
+def test_step_sphere_down(world: World) -> None:
     """``CSphere::step_sphere_down`` (acclient.c:358615): missing, rewinding too far, or landing
     on a walkable top (ADJUSTED, with the contact plane set)."""
     answers = set()

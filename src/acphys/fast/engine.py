@@ -144,7 +144,7 @@ class FastPhysics(Physics):
     def _reload_all(self) -> None:
         for i in range(len(self._bodies)):
             self._load(i)
-        transition_from_pool(self._transition, self.world_arrays)
+        transition_from_pool(self._transition, self.world_arrays, self.world)
         self._grid[grid.MAX_REACH] = float(grid.reaches_now(self._records).max(initial=0.0))
         grid.grid_place_all(self._records, self._grid_heads)
         self._clock[1] = self.world.physics_time
@@ -274,7 +274,7 @@ class FastPhysics(Physics):
             finally:
                 steps.detach()
             self.counts.reference += steps.count
-            transition_from_pool(self._transition, self.world_arrays)
+            transition_from_pool(self._transition, self.world_arrays, self.world)
         self._clock[1] = self.world.physics_time
         self._reload_after(i, partners | self._partners(body))
 

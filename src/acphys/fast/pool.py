@@ -70,11 +70,8 @@ def _index(arrays: WorldArrays, cell: object) -> int:
 
 
 def transition_to_pool(tr_array: np.ndarray, arrays: WorldArrays, world: World) -> None:
-    """Write the kernel's transition into the reference pool's first slot (made if need be)."""
-    if not Transition._pool:
-        Transition.make_transition(world)
-        Transition.cleanup_transition()
-    transit = Transition._pool[0]
+    """Write the kernel's transition into the first slot of ``world``'s pool (made if need be)."""
+    transit = Transition.pool(world)[0]
     tr = tr_array[0]
     path, info, obj = transit.sphere_path, transit.collision_info, transit.object_info
     obj.state = ObjectInfoState(int(tr["oi_state"]))
@@ -107,11 +104,12 @@ def transition_to_pool(tr_array: np.ndarray, arrays: WorldArrays, world: World) 
     info.collision_normal = _vector(tr["collision_normal"])
 
 
-def transition_from_pool(tr_array: np.ndarray, arrays: WorldArrays) -> None:
-    """Read the reference pool's first slot back into the kernel's transition."""
-    if not Transition._pool:
+def transition_from_pool(tr_array: np.ndarray, arrays: WorldArrays, world: World) -> None:
+    """Read the first slot of ``world``'s pool back into the kernel's transition (nothing before
+    its first sweep)."""
+    if not world.transition_pool:
         return
-    transit = Transition._pool[0]
+    transit = world.transition_pool[0]
     tr = tr_array[0]
     path, info, obj = transit.sphere_path, transit.collision_info, transit.object_info
     tr["oi_state"] = int(obj.state)

@@ -60,6 +60,7 @@ if TYPE_CHECKING:
     from acphys.math.position import Position
     from acphys.physics_obj import PhysicsObj
     from acphys.world.obj_cell import CellSource, ObjCell
+    from acphys.world.world import World
 
 __all__ = ["MAX_TRANSITION_LEVEL", "InsertType", "SpherePath", "Transition"]
 
@@ -88,8 +89,6 @@ class Transition:
 
     #: ``CTransition::transition_level``: how many transitions are running, nested.
     transition_level: ClassVar[int] = 0
-    #: ``transit``: retail's static pool of ten, built on the first request and reused ever after.
-    _pool: ClassVar[list[Transition]] = []
 
     def __init__(self, world: CellSource, obj: PhysicsObj | None = None) -> None:
         self.world = world
@@ -103,14 +102,23 @@ class Transition:
     # -- the pool ---------------------------------------------------------------------------------
 
     @classmethod
-    def make_transition(cls, world: CellSource) -> Transition:
-        """The pool's transition for the next nesting level, ``init``-ed for ``world``; past ten
-        levels, a ``RuntimeError`` (retail returns no transition, and the sweep that asked for
-        it fails).
+    def pool(cls, world: World) -> list[Transition]:
+        """``transit``, retail's static pool of ten transitions, of ``world``: made on the first
+        request and reused ever after. One client has one; here each world (a simulation) has
+        its own, so what one simulation's sweeps leave in the pool never reaches another's."""
+        if not world.transition_pool:
+            world.transition_pool = [cls(world) for _ in range(MAX_TRANSITION_LEVEL)]
+        return world.transition_pool
 
-        The pool is retail's: ten transitions made once and reused, so what ``init`` does not
-        reset (the sphere path's positions, low points, walkable and step records) carries
-        over from the last sweep that used the slot, as it does in the client.
+    @classmethod
+    def make_transition(cls, world: World) -> Transition:
+        """``world``'s pool transition for the next nesting level, ``init``-ed; past ten levels, a
+        ``RuntimeError`` (retail returns no transition, and the sweep that asked for it fails).
+
+        The pool is retail's (:meth:`pool`): ten transitions made once and reused, so what
+        ``init`` does not reset (the sphere path's positions, low points, walkable and step
+        records, the collision record's planes) carries over from the last sweep that used the
+        slot, as it does in the client.
 
         Retail: CTransition::makeTransition @ 0x0050B150 (acclient.c:312542)
         """
@@ -118,11 +126,7 @@ class Transition:
             raise RuntimeError(
                 f"CTransition::makeTransition: more than {MAX_TRANSITION_LEVEL} nested transitions"
             )
-        if not cls._pool:
-            cls._pool = [cls(world) for _ in range(MAX_TRANSITION_LEVEL)]
-        transit = cls._pool[cls.transition_level]
-        transit.world = world
-        transit.cell_array.source = world
+        transit = cls.pool(world)[cls.transition_level]
         transit.init()
         cls.transition_level += 1
         return transit

@@ -28,6 +28,7 @@ from acphys.world.terrain import HEIGHT_TABLE_SIZE, MAX_LAND_HEIGHT, NUM_VERTICE
 
 if TYPE_CHECKING:
     from acphys.physics_obj import PhysicsObj
+    from acphys.transition.transition import Transition
 
 
 #: The first id ``add_object`` hands out (the range retail servers use for dynamic objects).
@@ -49,7 +50,8 @@ def flat_landblock(landblock: int, height: float) -> LandBlock:
 
 
 class World:
-    """The cells, the clocks, the objects and the player object of one simulation."""
+    """The cells, the clocks, the objects, the player object and the transition pool of one
+    simulation."""
 
     def __init__(self, seed: int = 0) -> None:
         #: Retail's ``Random::RollDice`` draws (placement scatter, CallPES pauses, particles) come
@@ -72,6 +74,9 @@ class World:
         #: ``CObjectMaint``'s lost cell (keys, in the order they came): bodies whose position is in
         #: no cell, waiting for one.
         self._lost_cell: dict[PhysicsObj, None] = {}
+        #: ``CTransition::transit``: the pool the sweeps take their transitions from
+        #: (:meth:`acphys.transition.transition.Transition.pool`), made on the first sweep.
+        self.transition_pool: list[Transition] = []
 
     # -- objects ---------------------------------------------------------------------------
 

@@ -81,7 +81,7 @@ def _numba(name: str) -> Any:
 #: Numba's locators of a source file's cache (``NUMBA_CACHE_DIR``, the ``__pycache__`` beside it,
 #: the user's cache folder), each stamped by the kernel sources.
 LOCATORS = tuple(
-    type(f"Kernel{name}", (_StampedByTheKernelSources, _numba(name)), {})
+    type(f"Kernel{name}", (_StampedByTheKernelSources, _numba(name)), {"__module__": __name__})
     for name in ("UserProvidedCacheLocator", "InTreeCacheLocator", "UserWideCacheLocator")
 )
 

@@ -24,6 +24,8 @@ FLOOR_Z: float = f32(math.cos(3437.746770784939))
 
 #: ``z_for_landing`` = sin 5°: walkable allowance when not on walkable ground (acclient.c:40376).
 LANDING_Z: float = f32(0.0871557)
+#: The step-down (and step-up) height of a body not on walkable ground (acclient.c:312807, 312966).
+SMALL_STEP_DOWN_HEIGHT: float = f32(0.039999999)
 
 #: The retail epsilon written as ``0.00019999999`` throughout the decompilation: the float32
 #: ``F_EPSILON`` (``const float F_EPSILON_37``, acclient_data.h:598), i.e. float32(0.0002).

@@ -13,6 +13,7 @@ from typing import ClassVar
 
 import pytest
 
+from acphys.constants import SMALL_STEP_DOWN_HEIGHT
 from acphys.flags import ObjectInfoState as OI
 from acphys.flags import PhysicsState as PS
 from acphys.flags import TransitionState as TS
@@ -31,7 +32,7 @@ from acphys.transition import placement
 from acphys.transition.collision_info import CollisionInfo
 from acphys.transition.object_info import ObjectInfo
 from acphys.transition.sphere_path import SpherePath
-from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT, Transition
+from acphys.transition.transition import Transition
 from acphys.world.obj_cell import CellInfo
 from acphys.world.static_objects import add_static_object
 from acphys.world.world import World

@@ -44,7 +44,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, ClassVar
 
-from acphys.constants import EPSILON, LANDING_Z
+from acphys.constants import EPSILON, LANDING_Z, SMALL_STEP_DOWN_HEIGHT
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState, member_namespace
 from acphys.geometry.plane import Plane
 from acphys.math.cell_id import adjust_to_outside, get_block_offset
@@ -70,8 +70,6 @@ IT = member_namespace(InsertType)
 
 #: ``makeTransition`` hands out at most ten nested transitions (acclient.c:312564).
 MAX_TRANSITION_LEVEL = 10
-#: The step-down (and step-up) height of a body not on walkable ground (acclient.c:312807, 312966).
-SMALL_STEP_DOWN_HEIGHT = f32(0.039999999)
 
 
 class Transition:

@@ -27,7 +27,7 @@ import math
 
 from numba import njit
 
-from acphys.constants import EPSILON, FLOOR_Z, LANDING_Z
+from acphys.constants import EPSILON, FLOOR_Z, LANDING_Z, SMALL_STEP_DOWN_HEIGHT
 from acphys.fast.kernels.cells import (
     BAIL,
     R_CELL,
@@ -83,7 +83,6 @@ from acphys.fast.kernels.path import (
 )
 from acphys.fast.kernels.store import put
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
-from acphys.transition.transition import SMALL_STEP_DOWN_HEIGHT
 from acphys.world.terrain import WaterType
 
 OK = int(TransitionState.OK)

@@ -30,6 +30,12 @@ def _vector(values: np.ndarray) -> Vector3:
     return Vector3(x, y, z)
 
 
+def _reach(extents: list[float], scale: float) -> float:
+    """The broad phase's reach of a body whose spheres extend ``extents`` (unscaled) from its
+    origin: the longest, scaled, with a millionth and :data:`REACH_MARGIN` to spare."""
+    return max((extent * scale for extent in extents), default=0.0) * (1.0 + 1e-6) + REACH_MARGIN
+
+
 def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool) -> None:
     """Copy ``body`` into ``record`` (``cell_index``: the kernel index of its cell, -1 for none)."""
     record["covered"] = covered
@@ -84,15 +90,9 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     for s, sphere in enumerate(spheres[:2]):
         c = sphere.center
         record["sphere"][s] = (c.x, c.y, c.z, sphere.radius)
-    record["reach"] = (
-        max(((s.center.length() + s.radius) * body.scale for s in spheres), default=0.0) * (1.0 + 1e-6)
-        + REACH_MARGIN
-    )
-    record["hreach"] = (
-        max((((s.center.x**2 + s.center.y**2) ** 0.5 + s.radius) * body.scale for s in spheres), default=0.0)
-        * (1.0 + 1e-6)
-        + REACH_MARGIN
-    )
+    record["reach"] = _reach([s.center.length() + s.radius for s in spheres], body.scale)
+    across = [(s.center.x**2 + s.center.y**2) ** 0.5 + s.radius for s in spheres]  # from the z axis
+    record["hreach"] = _reach(across, body.scale)
     if parts is not None:
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height

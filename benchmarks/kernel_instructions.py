@@ -1,0 +1,239 @@
+"""Count the fast engine's instructions per body-step, split by kernel function.
+
+Times on a shared machine swing by 2x from minute to minute; instruction counts do not. This
+runs a workload on the fast engine under ``valgrind --tool=callgrind`` with instrumentation off
+while Python starts and the kernels load, warms the bodies up (``--warm`` ticks: links
+played, walks under way), then counts ``--ticks`` ticks only, and prints the instructions per
+body-step: in all (the engine's per-tick Python included), in the kernels, and per kernel
+function (own instructions, calls per body-step, instructions per call)::
+
+    .venv/bin/python benchmarks/kernel_instructions.py                    # hills, 529 bodies
+    .venv/bin/python benchmarks/kernel_instructions.py --workload crowd --bodies 100 --json out.json
+
+The kernels are loaded once natively first, so callgrind never watches a compile. Needs
+``valgrind`` (with ``callgrind_control``) on the PATH; takes some minutes, mostly Python's
+start under valgrind.
+"""
+
+from __future__ import annotations
+
+import argparse
+import bisect
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parents[1]
+
+
+# -- the child: runs under valgrind ----------------------------------------------------------
+
+
+def _remember_cached_objects() -> dict[int, bytes]:
+    """Keep the object code of every library Numba loads from its cache (by the library's id)."""
+    from numba.core import codegen
+
+    objects: dict[int, bytes] = {}
+    unserialize = codegen.CPUCodeLibrary._unserialize.__func__
+
+    def keeping(cls: type, code_generator: object, state: tuple) -> object:
+        library = unserialize(cls, code_generator, state)
+        if state[1] == "object":
+            objects[id(library)] = state[2][0]
+        return library
+
+    codegen.CPUCodeLibrary._unserialize = classmethod(keeping)
+    return objects
+
+
+def _write_symbols(objects: dict[int, bytes], path: Path) -> None:
+    """``address name`` of every function linked into ``run_bodies``, from its object code."""
+    from acphys.fast.kernels import tick
+
+    compiled = tick.run_bodies.overloads[tick.run_bodies.signatures[0]]
+    library = compiled.library
+    code = objects.get(id(library)) or library._get_compiled_object()
+    with tempfile.NamedTemporaryFile(suffix=".o") as obj:
+        obj.write(code)
+        obj.flush()
+        listing = subprocess.run(
+            ["nm", "-n", "--defined-only", obj.name], capture_output=True, text=True, check=True
+        ).stdout
+    offsets = {}
+    for line in listing.splitlines():
+        fields = line.split()
+        if len(fields) == 3 and fields[1] in "tTwW":
+            offsets[fields[2]] = int(fields[0], 16)
+    main = compiled.fndesc.mangled_name
+    base = library.get_pointer_to_function(main) - offsets[main]
+    path.write_text("".join(f"{base + offset:x} {name}\n" for name, offset in offsets.items()))
+
+
+def _wait_for(path: Path) -> None:
+    while not path.exists():
+        time.sleep(0.05)
+
+
+def child(workdir: Path, workload: str, bodies: int, ticks: int, warm: int) -> None:
+    objects = _remember_cached_objects()
+    from acphys.bench import WORKLOADS
+
+    sim = WORKLOADS[workload][1](bodies, 1e6, "fast")
+    for _ in range(warm):
+        sim.step(sync=False)
+    _write_symbols(objects, workdir / "symbols")
+    counts = sim.physics.counts
+    before = counts.kernel + counts.reference
+    (workdir / "ready").write_text("")
+    _wait_for(workdir / "go")
+    for _ in range(ticks):
+        sim.step(sync=False)
+    (workdir / "done").write_text(str(counts.kernel + counts.reference - before))
+    _wait_for(workdir / "end")
+
+
+# -- the parent: drives valgrind and reads its counts --------------------------------------------
+
+
+def _function_name(symbol: str) -> str:
+    """``module.function`` of a Numba-mangled kernel symbol (``_ZN6acphys4fast7kernels4tick...``)."""
+    rest = symbol.split("kernels", 1)[1] if "kernels" in symbol else symbol
+    names = []
+    while rest[:1].isdigit():
+        digits = re.match(r"\d+", rest).group(0)
+        start = len(digits)
+        names.append(rest[start : start + int(digits)])
+        rest = rest[start + int(digits) :]
+    name = ".".join(names[:2]) or symbol[:60]
+    return name + " (wrapper)" if symbol.startswith(("_ZN7cpython", "cfunc.")) else name
+
+
+def attribute(profile: Path, symbols: Path) -> tuple[int, dict[str, int], dict[str, int]]:
+    """``(all instructions, own instructions by kernel function, calls by kernel function)`` of a
+    callgrind profile written with ``--dump-instr=yes --dump-line=no``."""
+    table = sorted(
+        (int(address, 16), _function_name(name))
+        for address, name in (line.split(None, 1) for line in symbols.read_text().splitlines())
+    )
+    starts = [address for address, _ in table]
+    own: dict[str, int] = {}
+    calls: dict[str, int] = {}
+    total = 0
+    position = 0
+    call_line = False
+    for line in profile.read_text().splitlines():
+        if line.startswith("calls="):
+            count, target = line[6:].split()[:2]
+            k = bisect.bisect_right(starts, int(target, 16)) - 1 if target.startswith("0x") else -1
+            if k >= 0 and starts[k] == int(target, 16):
+                calls[table[k][1]] = calls.get(table[k][1], 0) + int(count)
+            call_line = True
+            continue
+        fields = line.split()
+        if len(fields) != 2 or not line[:1] in "0x+-*":
+            continue
+        where, cost = fields
+        if where.startswith("0x"):
+            position = int(where, 16)
+        elif where[0] in "+-":
+            position += int(where)
+        if call_line:  # the call's inclusive cost, counted in its callee already
+            call_line = False
+            continue
+        total += int(cost)
+        k = bisect.bisect_right(starts, position) - 1
+        if 0 <= k < len(table) - 1 or (k == len(table) - 1 and position - starts[k] < 1 << 16):
+            own[table[k][1]] = own.get(table[k][1], 0) + int(cost)
+    return total, own, calls
+
+
+def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
+    for tool in ("valgrind", "callgrind_control", "nm"):
+        if shutil.which(tool) is None:
+            raise SystemExit(f"kernel_instructions: {tool} is not on the PATH")
+    # load (or compile) the kernels natively first: callgrind must not watch a compile
+    subprocess.run(
+        [sys.executable, "-c", "from acphys import bench; bench._warm_up('hills')"], check=True
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        workdir = Path(tmp)
+        profile = workdir / "callgrind.out"
+        command = ["valgrind", "--tool=callgrind", "--instr-atstart=no", "--dump-instr=yes"]
+        command += ["--dump-line=no", f"--callgrind-out-file={profile}", sys.executable, __file__]
+        command += ["--child", tmp, "--workload", workload, "--bodies", str(bodies)]
+        command += ["--ticks", str(ticks), "--warm", str(warm)]
+        process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            while not (workdir / "ready").exists():
+                if process.poll() is not None:
+                    raise SystemExit("kernel_instructions: the run under valgrind stopped early")
+                time.sleep(0.5)
+            control = ["callgrind_control"]
+            subprocess.run([*control, "--instr=on", str(process.pid)], check=True, capture_output=True)
+            (workdir / "go").write_text("")
+            _wait_for(workdir / "done")
+            subprocess.run([*control, "--dump", str(process.pid)], check=True, capture_output=True)
+            (workdir / "end").write_text("")
+            process.wait()
+        finally:
+            if process.poll() is None:
+                process.kill()
+        steps = int((workdir / "done").read_text())
+        dumps = sorted(workdir.glob("callgrind.out.*"))
+        total, own, calls = attribute(dumps[-1], workdir / "symbols")
+    kernel = sum(own.values())
+    functions = [
+        {
+            "function": name,
+            "per_step": cost / steps,
+            "calls_per_step": calls.get(name, 0) / steps,
+            "per_call": cost / calls[name] if calls.get(name) else None,
+        }
+        for name, cost in sorted(own.items(), key=lambda item: -item[1])
+    ]
+    return {
+        "workload": workload,
+        "bodies": bodies,
+        "ticks": ticks,
+        "body_steps": steps,
+        "per_step": total / steps,
+        "kernel_per_step": kernel / steps,
+        "functions": functions,
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--workload", default="hills")
+    parser.add_argument("--bodies", type=int, default=529)
+    parser.add_argument("--ticks", type=int, default=10, help="ticks counted")
+    parser.add_argument("--warm", type=int, default=60, help="ticks run before counting")
+    parser.add_argument("--top", type=int, default=30, help="kernel functions listed")
+    parser.add_argument("--json", type=Path, help="also write the figures here")
+    parser.add_argument("--child", help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.child:
+        child(Path(args.child), args.workload, args.bodies, args.ticks, args.warm)
+        return 0
+    figures = measure(args.workload, args.bodies, args.ticks, args.warm)
+    print(
+        f"{figures['workload']}, {figures['bodies']} bodies, {figures['body_steps']:,} body-steps counted: "
+        f"{figures['per_step']:,.0f} instructions a body-step, {figures['kernel_per_step']:,.0f} in the kernels"
+    )
+    print(f"{'kernel function':40} {'instr/step':>10} {'calls/step':>10} {'instr/call':>10}")
+    for row in figures["functions"][: args.top]:
+        per_call = f"{row['per_call']:10.1f}" if row["per_call"] is not None else f"{'-':>10}"
+        print(f"{row['function']:40} {row['per_step']:10.1f} {row['calls_per_step']:10.2f} {per_call}")
+    if args.json:
+        args.json.write_text(json.dumps(figures, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

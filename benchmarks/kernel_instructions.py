@@ -20,7 +20,6 @@ from __future__ import annotations
 import argparse
 import bisect
 import json
-import os
 import re
 import shutil
 import subprocess
@@ -136,7 +135,7 @@ def attribute(profile: Path, symbols: Path) -> tuple[int, dict[str, int], dict[s
             call_line = True
             continue
         fields = line.split()
-        if len(fields) != 2 or not line[:1] in "0x+-*":
+        if len(fields) != 2 or line[:1] not in "0x+-*":
             continue
         where, cost = fields
         if where.startswith("0x"):
@@ -158,9 +157,7 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
         if shutil.which(tool) is None:
             raise SystemExit(f"kernel_instructions: {tool} is not on the PATH")
     # load (or compile) the kernels natively first: callgrind must not watch a compile
-    subprocess.run(
-        [sys.executable, "-c", "from acphys import bench; bench._warm_up('hills')"], check=True
-    )
+    subprocess.run([sys.executable, "-c", "from acphys import bench; bench._warm_up('hills')"], check=True)
     with tempfile.TemporaryDirectory() as tmp:
         workdir = Path(tmp)
         profile = workdir / "callgrind.out"
@@ -224,7 +221,8 @@ def main(argv: list[str] | None = None) -> int:
     figures = measure(args.workload, args.bodies, args.ticks, args.warm)
     print(
         f"{figures['workload']}, {figures['bodies']} bodies, {figures['body_steps']:,} body-steps counted: "
-        f"{figures['per_step']:,.0f} instructions a body-step, {figures['kernel_per_step']:,.0f} in the kernels"
+        f"{figures['per_step']:,.0f} instructions a body-step, "
+        f"{figures['kernel_per_step']:,.0f} in the kernels"
     )
     print(f"{'kernel function':40} {'instr/step':>10} {'calls/step':>10} {'instr/call':>10}")
     for row in figures["functions"][: args.top]:

@@ -10,7 +10,8 @@ function (own instructions, calls per body-step, instructions per call)::
     .venv/bin/python benchmarks/kernel_instructions.py                    # hills, 529 bodies
     .venv/bin/python benchmarks/kernel_instructions.py --workload crowd --bodies 100 --json out.json
 
-The kernels are loaded once natively first, so callgrind never watches a compile. Needs
+The kernels are loaded once natively first, so callgrind never watches a compile, and the run
+under valgrind loads this machine's code. Needs
 ``valgrind`` (with ``callgrind_control``) on the PATH; takes some minutes, mostly Python's
 start under valgrind.
 """
@@ -20,6 +21,7 @@ from __future__ import annotations
 import argparse
 import bisect
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -156,8 +158,14 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
     for tool in ("valgrind", "callgrind_control", "nm"):
         if shutil.which(tool) is None:
             raise SystemExit(f"kernel_instructions: {tool} is not on the PATH")
-    # load (or compile) the kernels natively first: callgrind must not watch a compile
+    # Load (or compile) the kernels natively first: callgrind must not watch a compile. Valgrind
+    # shows Python another CPU (a Haswell), whose code Numba would compile afresh: the run under
+    # it names this machine's CPU, so that it loads and counts the code that runs natively.
     subprocess.run([sys.executable, "-c", "from acphys import bench; bench._warm_up('hills')"], check=True)
+    from llvmlite import binding
+
+    cpu = {"NUMBA_CPU_NAME": binding.get_host_cpu_name()}
+    cpu["NUMBA_CPU_FEATURES"] = binding.get_host_cpu_features().flatten()
     with tempfile.TemporaryDirectory() as tmp:
         workdir = Path(tmp)
         profile = workdir / "callgrind.out"
@@ -165,7 +173,9 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
         command += ["--dump-line=no", f"--callgrind-out-file={profile}", sys.executable, __file__]
         command += ["--child", tmp, "--workload", workload, "--bodies", str(bodies)]
         command += ["--ticks", str(ticks), "--warm", str(warm)]
-        process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        process = subprocess.Popen(
+            command, env={**os.environ, **cpu}, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+        )
         try:
             while not (workdir / "ready").exists():
                 if process.poll() is not None:

@@ -320,6 +320,23 @@ def test_interpolate_rotation_and_origin():
         check(got, vt(into.origin), t)
 
 
+def test_interpolate_rotation_to_the_end_takes_the_same_sines():
+    """At t = 1 the kernel's slerp calls sin once, not three times: sin(omega * 0) is 0 and
+    sin(1 * omega) is sin(omega) (acclient.c:357257-357290), so every weight and the rotation
+    set are the reference's to the bit, across the slerp's whole range of angles."""
+    rng = random.Random(12)
+    slerped = 0
+    for _ in range(N):
+        start, end, into = frame(rng), frame(rng), frame(rng)
+        cosom = sum(a * b for a, b in zip(start.rotation, end.rotation, strict=True))
+        slerped += 1.0 - abs(cosom) > EPSILON
+        o, q, m = ft(into)
+        got = K.frame_interpolate_rotation(o, q, m, start.rotation, end.rotation, 1.0)
+        into.interpolate_rotation(start, end, 1.0)
+        check(got, (into.rotation, tuple(into.m)), start.rotation, end.rotation)
+    assert slerped > 0.9 * N
+
+
 def test_combine_subtract_and_the_overloads():
     rng = random.Random(11)
     for _ in range(N):

@@ -213,5 +213,11 @@ TRANSITION = np.dtype(
         ("memo_cells", "i4", MAX_CELLS),
         ("memo_cell_ids", "u4", MAX_CELLS),
         ("memo_curr", "i4"),  # the cell holding sphere 0's centre, -1 for none
+        # the last terrain triangle found under a point in this sweep (find_terrain_poly is a
+        # function of the cell and the point's x and y; a step down or a lift moves z alone)
+        ("poly_memo_cell", "i4"),  # -1: none
+        ("poly_memo_x", "f8"),
+        ("poly_memo_y", "f8"),
+        ("poly_memo", "i4"),
     ]
 )

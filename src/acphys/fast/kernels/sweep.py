@@ -114,7 +114,8 @@ ENTIRELY_WATER_DEPTH = 0.9
 
 @njit(cache=True, _nrt=False)
 def transition_init(tr):
-    """Clear the object, the path's per-sweep fields, the collision record and the cell array.
+    """Clear the object, the path's per-sweep fields, the collision record, the cell array and the
+    kernel's triangle memo.
 
     Port of :meth:`acphys.transition.transition.Transition.init` (with ``SpherePath.init``).
     Retail: CTransition::init @ 0x00509DD0 (acclient.c:311595)
@@ -136,6 +137,7 @@ def transition_init(tr):
     tr.check_walkable = False
     tr.cell_array_valid = False
     tr.neg_poly_hit = False
+    tr.poly_memo_cell = -1
     collision_info_init(tr)
     cell_array_clear(tr)
 
@@ -217,7 +219,8 @@ def find_env_collisions(w, tr, k):
     """Collide sphere 0 with the terrain triangle of cell ``k`` under the low point.
 
     Entry restrictions (a cell with one is ``uncovered``) and the all-water stop come first; a
-    partly wet cell's water depth is the reference path's.
+    partly wet cell's water depth is the reference path's. The triangle found last in the sweep
+    is reused for the same cell and point (a step down or a lift moves the low point's z alone).
 
     Port of :meth:`acphys.world.land_cell.LandCell.find_env_collisions`.
     Retail: CLandCell::find_env_collisions @ 0x00532F20 (acclient.c:354991)
@@ -226,7 +229,11 @@ def find_env_collisions(w, tr, k):
     ox, oy, oz = get_block_offset(tr.check_cell_id, cell.cell_id)
     px = f32(tr.global_low_point[0] - ox)
     py = f32(tr.global_low_point[1] - oy)
-    poly = find_terrain_poly(w, k, px, py)
+    if k == tr.poly_memo_cell and px == tr.poly_memo_x and py == tr.poly_memo_y:
+        poly = tr.poly_memo
+    else:
+        poly = find_terrain_poly(w, k, px, py)
+        tr.poly_memo_cell, tr.poly_memo_x, tr.poly_memo_y, tr.poly_memo = k, px, py, poly
     if poly < 0:
         return OK
     if cell.block_water_type == WT_ENTIRELY_WATER and not bodies_of(w)[tr.oi_body].state & PS_MISSILE:

@@ -90,7 +90,7 @@ def cache_global_sphere_offset(tr, dx, dy, dz):
     tr.global_low_point[2] = f32(tr.global_low_point[2] + dz)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def add_offset_to_check_pos(tr, dx, dy, dz):
     """Move ``check_pos`` and the global spheres; the cell array goes stale.
 
@@ -146,7 +146,7 @@ def restore_check_pos(tr):
     cache_global_sphere_at_check(tr)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def adjust_check_pos(tr, cell_id):
     """Re-home ``check_pos`` into outdoor cell ``cell_id`` (shifting by the block offset).
 

@@ -172,7 +172,7 @@ def x87_divide(numerator, denominator):
     return math.copysign(math.inf, numerator) * math.copysign(1.0, denominator)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_depth, land_cell_id):
     """Rest sphere 0 (centre ``(cx, cy, cz)``, cell-local) on a terrain plane lowered by the water.
 
@@ -441,7 +441,7 @@ def find_cell_list(w, tr, want_cell):
     return curr if want_cell else -1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def _memo_matches(tr):
     """Whether the last cell list found holds for ``check_pos``'s cell and spheres."""
     if not tr.memo_valid or tr.memo_cell_id != tr.check_cell_id or tr.memo_num_sphere != tr.num_sphere:
@@ -456,7 +456,7 @@ def _memo_matches(tr):
     return True
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def _memo_store(tr, curr):
     tr.memo_valid = True
     tr.memo_cell_id = tr.check_cell_id

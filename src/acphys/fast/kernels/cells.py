@@ -186,7 +186,7 @@ def find_terrain_poly(w, k, px, py):
     return -1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def point_in_cell(w, k, px, py):
     """Whether the landblock-local point lies over one of cell ``k``'s triangles.
 

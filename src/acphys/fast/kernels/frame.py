@@ -752,7 +752,7 @@ def _floor_checked(x):
     return np.floor(x)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def adjust_to_outside_lcoord(cell_id, loc):
     """``(ok, lx, ly, loc)``: the lcoord of the land cell under the block-local ``loc``; ``loc`` rewritten.
 

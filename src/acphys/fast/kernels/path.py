@@ -39,7 +39,7 @@ def t9(a):
 # -- SPHEREPATH -----------------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def cache_global_curr_center(tr):
     """Place each local sphere centre in ``curr_pos``'s frame.
 
@@ -54,7 +54,7 @@ def cache_global_curr_center(tr):
         tr.global_curr_center[s, 2] = f32(m[8] * cz + m[5] * cy + m[2] * cx + o[2])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def cache_global_sphere_at_check(tr):
     """Rebuild the global spheres and low point at ``check_pos``.
 

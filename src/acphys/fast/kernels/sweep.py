@@ -377,7 +377,7 @@ def find_collisions(w, tr, k):
     return result
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def insert_into_cell(w, tr, k, attempts):
     """Collide with everything in cell ``k`` until OK or COLLIDED, at most ``attempts`` times.
 

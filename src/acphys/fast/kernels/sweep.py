@@ -214,7 +214,7 @@ def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_dep
 # -- what a cell holds ------------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def find_env_collisions(w, tr, k):
     """Collide sphere 0 with the terrain triangle of cell ``k`` under the low point.
 
@@ -305,7 +305,7 @@ def _may_answer(w, tr, j):
     return not bodies_of(w)[j].collider or not out_of_reach(w, tr, j)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def find_obj_collisions(w, tr, k):
     """Ask the bodies shadowed in cell ``k``, in the list's order, to collide with the sweep
     (:func:`~acphys.fast.kernels.contact.body_find_obj_collisions`) until one answers other than
@@ -320,12 +320,19 @@ def find_obj_collisions(w, tr, k):
     """
     if tr.insert_type == IT_INITIAL_PLACEMENT:
         return OK
-    bodies, heads = bodies_of(w), heads_of(w)
-    cell = cells_of(w)[k]
-    if cell.num_others:
+    if cells_of(w)[k].num_others:
         return bail(tr, R_STATIC)  # a static object's shapes are the reference's
     if tr.lonely:
         return OK
+    return _ask_bodies_near(w, tr, k)
+
+
+@njit(cache=True, _nrt=False)
+def _ask_bodies_near(w, tr, k):
+    """:func:`find_obj_collisions` past its quick answers: the bodies the grid finds near the
+    sweep, or the cell's whole list."""
+    bodies, heads = bodies_of(w), heads_of(w)
+    cell = cells_of(w)[k]
     x0, y0 = block_origin(tr.check_cell_id)
     reach = grid_of(w)[MAX_REACH]
     low_x = low_y = math.inf

@@ -70,6 +70,7 @@ from acphys.fast.kernels.path import (
     add_offset_to_check_pos,
     adjust_check_pos,
     cache_global_curr_center,
+    cache_global_sphere_at_check,
     collision_info_init,
     restore_check_pos,
     save_check_pos,
@@ -517,7 +518,7 @@ def check_other_cells(w, tr, curr_cell):
     return bail(tr, R_NO_CELL)  # no cell holds sphere 0's centre: leaving the known cells
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def calc_num_steps(tr):
     """``(offset, offset_per_step, num_steps)`` for the path (not a viewer).
 
@@ -555,7 +556,7 @@ def snap_to_plane(nx, ny, nz, d, x, y, z):
     return (x, y, z)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def adjust_offset(tr, x, y, z):
     """Bend one step's offset by the sliding normal and the contact plane.
 
@@ -842,7 +843,9 @@ def validate_transition(w, tr, ts):
         put(tr.curr_m, tr.check_m)
         tr.curr_cell = tr.check_cell
         cache_global_curr_center(tr)
-        set_check_pos_to_curr(tr)
+        # set_check_pos(curr_pos): the check position holds the values just copied
+        tr.cell_array_valid = False
+        cache_global_sphere_at_check(tr)
     elif COLLIDED <= ts <= SLID:
         if tr.last_known_contact_plane_valid:
             kill_velocity(w, tr)

@@ -764,7 +764,7 @@ def set_position_internal(w, tr, i, now, events):
     return 0, events
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def update_object_internal(w, tr, i, quantum, now):
     """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
 
@@ -790,7 +790,7 @@ def update_object_internal(w, tr, i, quantum, now):
     return move_to_candidate(w, tr, i, quantum, now, origin, q, m)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def move_to_candidate(w, tr, i, quantum, now, origin, q, m):
     """The second half of an active step: sweep to the candidate and commit (or keep the origin).
     Returns ``(status, events)``.

@@ -339,7 +339,7 @@ def frame_grotate(origin, q, m, w):
     )
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_rotate(origin, q, m, w):
     """Rotate by the local axis-angle vector ``w``: ``localtoglobalvec``, then ``grotate``.
 

@@ -414,7 +414,9 @@ def find_cell_list(w, tr, want_cell):
     (land cells have no transit cells of their own beyond ``add_all_outside_cells``; a cell with
     a building is uncovered). The list is a function of ``check_pos``'s cell id and the spheres'
     x, y and radii alone, so the last one found is reused while they stay the same (the z of a
-    step-down or a landing does not change it).
+    step-down or a landing does not change it); the terrain test's last triangle answers
+    ``point_in_cell`` for its cell and point when the cell has terrain (an upright body's low point
+    lies under its sphere's centre).
     Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)
     """
     cells = cells_of(w)
@@ -443,7 +445,11 @@ def find_cell_list(w, tr, want_cell):
         k = tr.cells[i]
         ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
         px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
-        if point_in_cell(w, k, px, py):
+        remembered = k == tr.poly_memo_cell and px == tr.poly_memo_x and py == tr.poly_memo_y
+        if remembered and cells[k].num_polys:  # the triangle the terrain test just found there
+            if tr.poly_memo >= 0:
+                curr = k
+        elif point_in_cell(w, k, px, py):
             curr = k
     _memo_store(tr, curr)
     return curr if want_cell else -1

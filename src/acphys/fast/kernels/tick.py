@@ -181,7 +181,7 @@ def _undo(w):
     counters[JOURNAL] = 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def remove_shadows_from_cells(w, i):
     """Take each of body ``i``'s shadows out of its cell (the cell's last entry takes its slot).
 
@@ -220,7 +220,7 @@ def remove_shadows_from_cells(w, i):
     return True
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def add_shadows_to_cells(w, tr, i):
     """One shadow per cell of the transition's cell array, appended to that cell's list. Returns
     -1 when done, else the index of a cell whose list is full.
@@ -410,7 +410,7 @@ def update_position_internal(w, b, quantum):
 # -- the sweep and the commit ----------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def _lonely_sweep(w, tr, b, end, end_q):
     """Whether no other body is filed near anywhere this sweep can take the spheres. Across the
     ground, a sweep moves its candidate only along its steps (bent, never lengthened, by the
@@ -876,7 +876,7 @@ def _run_quantum(w, tr, i, quantum, tracing):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def update_object(w, tr, i, tracing):
     """Bring body ``i`` up to the clock, one or more quanta at a time. Returns 0 or a status.
 

@@ -127,9 +127,26 @@ def check_add_cell_boundary(w, tr, px, py, x, y, incell_max, incell_min):
     return ok
 
 
+@njit(cache=True, inline="always", _nrt=False)
+def _footprint_seen(tr, s):
+    """Whether an earlier global sphere has sphere ``s``'s x, y and radius (an upright human's
+    two): the cells it overlaps are then in the array already."""
+    for t in range(s):
+        if (
+            tr.global_sphere[t, 0] == tr.global_sphere[s, 0]
+            and tr.global_sphere[t, 1] == tr.global_sphere[s, 1]
+            and tr.global_sphere[t, 3] == tr.global_sphere[s, 3]
+        ):
+            return True
+    return False
+
+
 @njit(cache=True, _nrt=False)
 def add_all_outside_cells(w, tr, cell_id):
     """Once per array: every land cell the global spheres (in ``cell_id``'s landblock) overlap.
+
+    A sphere over the same ground point with the same radius as an earlier one is skipped: the
+    cells, their order and the answer are those of the earlier one (z is never read).
 
     Port of :meth:`acphys.world.land_cell.LandCell.add_all_outside_cells` (the kernel always has
     spheres). Retail: CLandCell::add_all_outside_cells @ 0x00533630 (acclient.c:355345)
@@ -139,6 +156,8 @@ def add_all_outside_cells(w, tr, cell_id):
     tr.added_outside = True
     ok = True
     for s in range(tr.num_sphere):
+        if _footprint_seen(tr, s):
+            continue
         center = (tr.global_sphere[s, 0], tr.global_sphere[s, 1], tr.global_sphere[s, 2])
         on_world, lx, ly, point = adjust_to_outside_lcoord(cell_id, center)
         if not on_world:

@@ -104,7 +104,7 @@ def add_offset_to_check_pos(tr, dx, dy, dz):
     cache_global_sphere_offset(tr, dx, dy, dz)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def set_check_pos_to_curr(tr):
     """``set_check_pos(curr_pos, curr_cell)``: the candidate restarts where the sweep is.
 

@@ -262,7 +262,7 @@ def find_env_collisions(w, tr, k):
     )
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def nobody_near(w, tr, x0, y0, x1, y1):
     """Whether no body but the mover reaches into the landblock-global box ``[x0, x1] × [y0, y1]``
     (its origin within its reach of the box)."""
@@ -405,7 +405,7 @@ def insert_into_cell(w, tr, k, attempts):
     return ts
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def find_cell_list(w, tr, want_cell):
     """Fill the cell array with the land cells the global spheres touch at ``check_pos``; with
     ``want_cell``, also the cell holding sphere 0's centre (-1 for none, -2 to bail).
@@ -827,7 +827,7 @@ def transitional_insert(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_level_2)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def validate_transition(w, tr, ts):
     """Accept or roll back one step; update the sliding normal, the stationary-fall counter and the
     contact state.

@@ -522,7 +522,7 @@ def _body_of(bodies, obj_id):
     return -1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def end_collisions(w, i, now):
     """Drop the records of body ``i`` untouched for over a second (an ethereal one for any time)
     and report their ends (``collision_end:NAME``, deferred: :data:`DEFERRED_COLLISION_END`), in
@@ -584,7 +584,7 @@ def _defer(w, kind, a, b, c, d):
     counters[OWED] = n + 1
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def track_object_collisions(w, tr, i, now):
     """Stamp each body the sweep touched into body ``i``'s collision records with the physics time
     and its ETHEREAL bit; a body touched for the first time gets a record, and the two bodies
@@ -634,7 +634,7 @@ def track_object_collisions(w, tr, i, now):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def handle_all_collisions(b, tr, prev_contact, prev_on_walkable, events):
     """Report touching the environment, bounce or stop, and keep the stationary bits.
 

@@ -74,7 +74,7 @@ def cache_global_sphere_at_check(tr):
     tr.global_low_point[2] = f32(m[8] * pz + m[2] * px + m[5] * py + o[2])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def cache_global_sphere_offset(tr, dx, dy, dz):
     """Move the global spheres and low point by an offset (float32 stores: Vector3 sums).
 

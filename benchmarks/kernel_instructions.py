@@ -76,8 +76,11 @@ def _write_symbols(objects: dict[int, bytes], path: Path) -> None:
     path.write_text("".join(f"{base + offset:x} {name}\n" for name, offset in offsets.items()))
 
 
-def _wait_for(path: Path) -> None:
+def _wait_for(path: Path, process: subprocess.Popen | None = None) -> None:
+    """Wait until ``path`` exists; if ``process`` (the run under valgrind) stops first, say so."""
     while not path.exists():
+        if process is not None and process.poll() is not None:
+            raise SystemExit("kernel_instructions: the run under valgrind stopped early")
         time.sleep(0.05)
 
 
@@ -177,14 +180,11 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
             command, env={**os.environ, **cpu}, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
         )
         try:
-            while not (workdir / "ready").exists():
-                if process.poll() is not None:
-                    raise SystemExit("kernel_instructions: the run under valgrind stopped early")
-                time.sleep(0.5)
+            _wait_for(workdir / "ready", process)
             control = ["callgrind_control"]
             subprocess.run([*control, "--instr=on", str(process.pid)], check=True, capture_output=True)
             (workdir / "go").write_text("")
-            _wait_for(workdir / "done")
+            _wait_for(workdir / "done", process)
             subprocess.run([*control, "--dump", str(process.pid)], check=True, capture_output=True)
             (workdir / "end").write_text("")
             process.wait()

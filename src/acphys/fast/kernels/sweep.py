@@ -216,6 +216,13 @@ def validate_walkable(tr, cx, cy, cz, radius, nx, ny, nz, d, is_water, water_dep
 
 
 @njit(cache=True, inline="always", _nrt=False)
+def _poly_remembered(tr, k, px, py):
+    """Whether the sweep's last terrain triangle (``tr.poly_memo``) was found in cell ``k`` under
+    ``(px, py)``."""
+    return k == tr.poly_memo_cell and px == tr.poly_memo_x and py == tr.poly_memo_y
+
+
+@njit(cache=True, inline="always", _nrt=False)
 def find_env_collisions(w, tr, k):
     """Collide sphere 0 with the terrain triangle of cell ``k`` under the low point.
 
@@ -230,7 +237,7 @@ def find_env_collisions(w, tr, k):
     ox, oy, oz = get_block_offset(tr.check_cell_id, cell.cell_id)
     px = f32(tr.global_low_point[0] - ox)
     py = f32(tr.global_low_point[1] - oy)
-    if k == tr.poly_memo_cell and px == tr.poly_memo_x and py == tr.poly_memo_y:
+    if _poly_remembered(tr, k, px, py):
         poly = tr.poly_memo
     else:
         poly = find_terrain_poly(w, k, px, py)
@@ -445,8 +452,7 @@ def find_cell_list(w, tr, want_cell):
         k = tr.cells[i]
         ox, oy, _ = get_block_offset(cell_id, cells[k].cell_id)
         px, py = f32(tr.global_sphere[0, 0] - ox), f32(tr.global_sphere[0, 1] - oy)
-        remembered = k == tr.poly_memo_cell and px == tr.poly_memo_x and py == tr.poly_memo_y
-        if remembered and cells[k].num_polys:  # the triangle the terrain test just found there
+        if cells[k].num_polys and _poly_remembered(tr, k, px, py):  # the terrain test's triangle
             if tr.poly_memo >= 0:
                 curr = k
         elif point_in_cell(w, k, px, py):

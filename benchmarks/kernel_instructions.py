@@ -164,7 +164,7 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
     # Load (or compile) the kernels natively first: callgrind must not watch a compile. Valgrind
     # shows Python another CPU (a Haswell), whose code Numba would compile afresh: the run under
     # it names this machine's CPU, so that it loads and counts the code that runs natively.
-    subprocess.run([sys.executable, "-c", "from acphys import bench; bench._warm_up('hills')"], check=True)
+    subprocess.run([sys.executable, "-c", "from acphys.bench import warm_up; warm_up()"], check=True)
     from llvmlite import binding
 
     cpu = {"NUMBA_CPU_NAME": binding.get_host_cpu_name()}

@@ -302,9 +302,9 @@ def _count_steps(sim: Simulation) -> Callable[[], int]:
     return lambda: steps
 
 
-def _warm_up(workload: str) -> float:
-    """The seconds the fast engine's kernels take to be ready (loaded from Numba's cache, or
-    compiled the first time): a tiny run of ``workload``."""
+def warm_up(workload: str = "hills") -> float:
+    """Make the fast engine's kernels ready (load them from Numba's cache, or compile them the first
+    time: minutes) with a tiny run of ``workload``; return the seconds it took."""
     start = time.perf_counter()
     WORKLOADS[workload][1](2, 0.2, "fast").run()
     return time.perf_counter() - start
@@ -313,7 +313,7 @@ def _warm_up(workload: str) -> float:
 def run_workload(workload: str, engine: str, bodies: int, seconds: float, base_rate: float) -> BenchResult:
     """One workload on one engine (``reference`` or ``fast``)."""
     description, build = WORKLOADS[workload]
-    compile_seconds = _warm_up(workload) if engine == "fast" else None
+    compile_seconds = warm_up(workload) if engine == "fast" else None
     start = time.perf_counter()
     sim = build(bodies, seconds, engine)
     build_seconds = time.perf_counter() - start

@@ -28,6 +28,7 @@ def test_the_suite_reports_every_workload_against_the_baseline() -> None:
     assert walkers.body_steps == 4 * 14
 
 
+@pytest.mark.kernels
 def test_both_engines_take_the_same_steps_and_the_fast_row_says_how() -> None:
     """With both engines each workload is measured on each; the fast engine's row gives its rate
     over the reference's in the same run, its compile time, fallback share, memory per body and
@@ -52,6 +53,7 @@ def test_both_engines_take_the_same_steps_and_the_fast_row_says_how() -> None:
         assert reference.fast_vs_reference is None and reference.fallback_share is None
 
 
+@pytest.mark.kernels
 def test_the_hills_walkers_circle_on_their_own_ground() -> None:
     """Every hills walker circles within its own 8-m square: nobody meets anybody, so the fast
     engine covers every step (the AnimDone that ends each walker's start-up link pauses its step
@@ -88,6 +90,7 @@ def test_the_crowd_walks_into_itself() -> None:
     assert sum(distance < 5.7 for distance in walked) >= 4
 
 
+@pytest.mark.kernels
 def test_the_command_prints_a_table_and_writes_json(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

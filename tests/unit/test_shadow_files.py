@@ -145,6 +145,7 @@ def _filing(cell: obj_cell.ObjCell) -> tuple[dict[tuple[int, int], set[int]], se
     return squares, {shadow.index for shadow in cell._unfiled}
 
 
+@pytest.mark.kernels
 def test_the_fast_engine_hands_back_files_a_fresh_filing_would_make() -> None:
     """``ObjCell.replace_shadow_objects`` keeps the files (refiling only what changed): after every
     tick of a crowd on the fast engine, each filed cell's files are those ``_start_files`` makes

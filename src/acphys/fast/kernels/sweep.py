@@ -14,8 +14,12 @@ shadow lists and the broad phase's grid, :mod:`acphys.fast.kernels.grid`).
 
 Retail recurses (``transitional_insert`` → ``step_down`` → ``transitional_insert`` ...); Numba
 cannot cache recursive functions, so each nesting level is its own compiled function
-(``transitional_insert``, ``_insert_level_2`` ... ``_insert_level_5``), made of the one body
-``transitional_insert_body`` given the level below as ``deeper``; below the fifth the step bails.
+(``transitional_insert``, ``_insert_level_2``), made of the one body ``transitional_insert_body``
+given the level below as ``deeper``; below the second the step bails (``R_DEEP``). Two levels
+are what a sweep over terrain and spheres takes: the step-down's inserts nest once, and its
+placement insert re-finds the contact plane the insert before it found at the same place, so it
+does not step down again. No step of the bundled scenarios, the bench workloads or the
+corpus nests deeper on the reference path; each further level took the compile about 15 s.
 The body and the routines that nest (``step_down``, ``edge_slide``) are inlined into each level
 (``inline="always"``), so ``deeper`` is a constant there: passed on as a value, Numba would type
 it as a first-class function, which it cannot cache.
@@ -808,28 +812,13 @@ def _insert_too_deep(w, tr, attempts):
 
 
 @njit(cache=True, _nrt=False)
-def _insert_level_5(w, tr, attempts):
+def _insert_level_2(w, tr, attempts):
     return transitional_insert_body(w, tr, attempts, _insert_too_deep)
 
 
 @njit(cache=True, _nrt=False)
-def _insert_level_4(w, tr, attempts):
-    return transitional_insert_body(w, tr, attempts, _insert_level_5)
-
-
-@njit(cache=True, _nrt=False)
-def _insert_level_3(w, tr, attempts):
-    return transitional_insert_body(w, tr, attempts, _insert_level_4)
-
-
-@njit(cache=True, _nrt=False)
-def _insert_level_2(w, tr, attempts):
-    return transitional_insert_body(w, tr, attempts, _insert_level_3)
-
-
-@njit(cache=True, _nrt=False)
 def transitional_insert(w, tr, attempts):
-    """The outermost ``transitional_insert``; five nested levels follow it."""
+    """The outermost ``transitional_insert``; one nested level follows it."""
     return transitional_insert_body(w, tr, attempts, _insert_level_2)
 
 

@@ -289,7 +289,7 @@ def frame_is_equal(o1, q1, o2, q2):
 # -- Frame: rotation ------------------------------------------------------------------------------
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_set_rotate(origin, q, m, new_q):
     """Normalise and store ``new_q``; returns ``(q, m)`` to store: the new ones, or the old if invalid.
 
@@ -339,7 +339,7 @@ def frame_grotate(origin, q, m, w):
     )
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def frame_rotate(origin, q, m, w):
     """Rotate by the local axis-angle vector ``w``: ``localtoglobalvec``, then ``grotate``.
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +31,8 @@ class Comparison:
     divergence: str = ""
     #: The kernel's body-steps whose sweep met another body.
     touching: int = 0
+    #: The body updates the fast engine left to the reference path, by reason.
+    reasons: dict[str, int] = field(default_factory=dict)
 
 
 def split_trace(path: Path) -> tuple[dict[str, Any] | None, bytes]:
@@ -74,9 +76,10 @@ def compare_engines(
             counts = sim.physics.counts  # type: ignore[attr-defined]
     assert counts is not None
     a, b = traces["reference"], traces["fast"]
-    records = sum(1 for _ in a.open("rb"))
-    if same_run(a, b):
-        return Comparison(True, records, counts.kernel, counts.reference, touching=counts.touching)
-    divergence = diff_traces(a, b, tol=0.0)
-    text = divergence.describe() if divergence is not None else _first_line_difference(a, b)
-    return Comparison(False, records, counts.kernel, counts.reference, text, counts.touching)
+    result = Comparison(True, sum(1 for _ in a.open("rb")), counts.kernel, counts.reference)
+    result.touching, result.reasons = counts.touching, dict(counts.reasons)
+    if not same_run(a, b):
+        divergence = diff_traces(a, b, tol=0.0)
+        result.identical = False
+        result.divergence = divergence.describe() if divergence is not None else _first_line_difference(a, b)
+    return result

@@ -17,9 +17,11 @@ cannot cache recursive functions, so each nesting level is its own compiled func
 (``transitional_insert``, ``_insert_level_2``), made of the one body ``transitional_insert_body``
 given the level below as ``deeper``; below the second the step bails (``R_DEEP``). Two levels
 are what a sweep over terrain and spheres takes: the step-down's inserts nest once, and its
-placement insert re-finds the contact plane the insert before it found at the same place, so it
-does not step down again. No step of the bundled scenarios, the bench workloads or the
-corpus nests deeper on the reference path; each further level took the compile about 15 s.
+placement insert starts with the contact plane the insert before it found still valid (only a
+slide clears it), so it returns before stepping down again. No step of the bundled scenarios,
+the bench workloads or the corpus nests deeper on the reference path
+(``tests/fast/test_engines_agree.py`` holds them to it); each further level took the compile
+about 15 s.
 The body and the routines that nest (``step_down``, ``edge_slide``) are inlined into each level
 (``inline="always"``), so ``deeper`` is a constant there: passed on as a value, Numba would type
 it as a first-class function, which it cannot cache.

@@ -5,15 +5,19 @@ runs a workload on the fast engine under ``valgrind --tool=callgrind`` with inst
 while Python starts and the kernels load, warms the bodies up (``--warm`` ticks: links
 played, walks under way), then counts ``--ticks`` ticks only, and prints the instructions per
 body-step: in all (the engine's per-tick Python included), in the kernels, and per kernel
-function (own instructions, calls per body-step, instructions per call)::
+function (own instructions, calls per body-step, instructions per call) and by kind of
+instruction (loads and stores, the stack's among them, float32 roundings, arithmetic, branches,
+calls); ``--annotate FUNCTION`` lists that function's most executed instructions (``objdump`` of
+the kernels' object code)::
 
     .venv/bin/python benchmarks/kernel_instructions.py                    # hills, 529 bodies
     .venv/bin/python benchmarks/kernel_instructions.py --workload crowd --bodies 100 --json out.json
+    .venv/bin/python benchmarks/kernel_instructions.py --annotate sweep.check_other_cells --lines 60
 
 The kernels are loaded once natively first, so callgrind never watches a compile, and the run
-under valgrind loads this machine's code. Needs
-``valgrind`` (with ``callgrind_control``) on the PATH; takes some minutes, mostly Python's
-start under valgrind.
+under valgrind loads this machine's code. Needs ``valgrind`` (with ``callgrind_control``) and
+binutils (``nm``, ``objdump``) on the PATH; about 30 s once the kernels are compiled, mostly
+Python's start under valgrind.
 """
 
 from __future__ import annotations
@@ -54,7 +58,8 @@ def _remember_cached_objects() -> dict[int, bytes]:
 
 
 def _write_symbols(objects: dict[int, bytes], path: Path) -> None:
-    """``address name`` of every function linked into ``run_bodies``, from its object code."""
+    """``address name`` of every function linked into ``run_bodies``, from its object code (kept
+    beside ``path`` as ``kernels.o``, with the address its offset 0 is loaded at in ``base``)."""
     from acphys.fast.kernels import tick
 
     compiled = tick.run_bodies.overloads[tick.run_bodies.signatures[0]]
@@ -74,6 +79,8 @@ def _write_symbols(objects: dict[int, bytes], path: Path) -> None:
     main = compiled.fndesc.mangled_name
     base = library.get_pointer_to_function(main) - offsets[main]
     path.write_text("".join(f"{base + offset:x} {name}\n" for name, offset in offsets.items()))
+    (path.parent / "kernels.o").write_bytes(code)
+    (path.parent / "base").write_text(f"{base:x}")
 
 
 def _wait_for(path: Path, process: subprocess.Popen | None = None) -> None:
@@ -118,25 +125,18 @@ def _function_name(symbol: str) -> str:
     return name + " (wrapper)" if symbol.startswith(("_ZN7cpython", "cfunc.")) else name
 
 
-def attribute(profile: Path, symbols: Path) -> tuple[int, dict[str, int], dict[str, int]]:
-    """``(all instructions, own instructions by kernel function, calls by kernel function)`` of a
-    callgrind profile written with ``--dump-instr=yes --dump-line=no``."""
-    table = sorted(
-        (int(address, 16), _function_name(name))
-        for address, name in (line.split(None, 1) for line in symbols.read_text().splitlines())
-    )
-    starts = [address for address, _ in table]
-    own: dict[str, int] = {}
-    calls: dict[str, int] = {}
-    total = 0
+def instruction_costs(profile: Path) -> tuple[dict[int, int], dict[int, int]]:
+    """``(instructions executed at each address, calls made to each address)`` of a callgrind
+    profile written with ``--dump-instr=yes --dump-line=no``."""
+    costs: dict[int, int] = {}
+    calls: dict[int, int] = {}
     position = 0
     call_line = False
     for line in profile.read_text().splitlines():
         if line.startswith("calls="):
             count, target = line[6:].split()[:2]
-            k = bisect.bisect_right(starts, int(target, 16)) - 1 if target.startswith("0x") else -1
-            if k >= 0 and starts[k] == int(target, 16):
-                calls[table[k][1]] = calls.get(table[k][1], 0) + int(count)
+            if target.startswith("0x"):
+                calls[int(target, 16)] = calls.get(int(target, 16), 0) + int(count)
             call_line = True
             continue
         fields = line.split()
@@ -150,15 +150,117 @@ def attribute(profile: Path, symbols: Path) -> tuple[int, dict[str, int], dict[s
         if call_line:  # the call's inclusive cost, counted in its callee already
             call_line = False
             continue
-        total += int(cost)
-        k = bisect.bisect_right(starts, position) - 1
-        if 0 <= k < len(table) - 1 or (k == len(table) - 1 and position - starts[k] < 1 << 16):
-            own[table[k][1]] = own.get(table[k][1], 0) + int(cost)
-    return total, own, calls
+        costs[position] = costs.get(position, 0) + int(cost)
+    return costs, calls
 
 
-def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
-    for tool in ("valgrind", "callgrind_control", "nm"):
+class Symbols:
+    """The kernel functions' start addresses (the ``symbols`` file the child writes)."""
+
+    def __init__(self, path: Path) -> None:
+        self.table = sorted(
+            (int(address, 16), _function_name(name))
+            for address, name in (line.split(None, 1) for line in path.read_text().splitlines())
+        )
+        self.starts = [address for address, _ in self.table]
+
+    def owner(self, address: int) -> str | None:
+        """The kernel function holding ``address`` (the last one: within 64 KiB), or None."""
+        k = bisect.bisect_right(self.starts, address) - 1
+        if 0 <= k < len(self.table) - 1 or (k == len(self.table) - 1 and address - self.starts[k] < 1 << 16):
+            return self.table[k][1]
+        return None
+
+    def starting_at(self, address: int) -> str | None:
+        k = bisect.bisect_right(self.starts, address) - 1
+        return self.table[k][1] if k >= 0 and self.starts[k] == address else None
+
+
+def attribute(
+    costs: dict[int, int], calls: dict[int, int], symbols: Symbols
+) -> tuple[int, dict[str, int], dict[str, int]]:
+    """``(all instructions, own instructions by kernel function, calls by kernel function)``."""
+    own: dict[str, int] = {}
+    for address, cost in costs.items():
+        name = symbols.owner(address)
+        if name is not None:
+            own[name] = own.get(name, 0) + cost
+    by_name: dict[str, int] = {}
+    for address, count in calls.items():
+        name = symbols.starting_at(address)
+        if name is not None:
+            by_name[name] = by_name.get(name, 0) + count
+    return sum(costs.values()), own, by_name
+
+
+def disassemble(workdir: Path) -> dict[int, str]:
+    """The kernels' instructions by the address they run at (``objdump`` of the kept object code)."""
+    base = int((workdir / "base").read_text(), 16)
+    listing = subprocess.run(
+        ["objdump", "-d", "--no-show-raw-insn", str(workdir / "kernels.o")],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    code = {}
+    for line in listing.splitlines():
+        found = re.match(r"\s+([0-9a-f]+):\s+(\S.*)", line)
+        if found:
+            code[base + int(found.group(1), 16)] = re.sub(r"\s+<.*>$", "", found.group(2))
+    return code
+
+
+#: What the kernels' instructions do, tested in this order on the mnemonic and its operands.
+KINDS = (
+    ("float32 rounding (to float and back)", r"^vcvt(sd2ss|ss2sd)"),
+    ("stack load or store (spills, tuples)", r"^v?mov.*\(%rsp\)"),
+    ("other load or store", r"^v?mov.*\("),
+    ("register copy or constant", r"^v?mov"),
+    (
+        "float arithmetic",
+        r"^v(add|sub|mul|div|sqrt|fn?m(add|sub)|min|max|xor|and|or|round|blend|unpck|perm|broadcast)",
+    ),
+    ("compare, test, branch", r"^(v?u?comi|cmp|test|j|set|vcmp|cmov)"),
+    ("call, return, push, pop", r"^(call|ret|push|pop)"),
+    (
+        "integer and address arithmetic",
+        r"^(add|sub|lea|imul|inc|dec|and|or|xor|shl|shr|sar|neg|not|bzhi|sbb|adc)",
+    ),
+)
+
+
+def kinds(costs: dict[int, int], code: dict[int, str]) -> dict[str, int]:
+    """The kernels' instructions executed, by :data:`KINDS` (``other`` for the rest)."""
+    patterns = [(name, re.compile(pattern)) for name, pattern in KINDS]
+    counted: dict[str, int] = {}
+    for address, cost in costs.items():
+        text = code.get(address)
+        if text is None:
+            continue
+        kind = next((name for name, pattern in patterns if pattern.search(text)), "other")
+        counted[kind] = counted.get(kind, 0) + cost
+    return counted
+
+
+def hottest(
+    function: str, costs: dict[int, int], code: dict[int, str], symbols: Symbols, lines: int
+) -> list[tuple[int, int, str]]:
+    """``(offset in the function, instructions, text)`` of its ``lines`` most executed
+    instructions, in address order."""
+    start = next((address for address, name in symbols.table if name == function), None)
+    if start is None:
+        raise SystemExit(f"kernel_instructions: no kernel function {function!r} in the code")
+    mine = [(address, cost) for address, cost in costs.items() if symbols.owner(address) == function]
+    top = sorted(mine, key=lambda item: -item[1])[:lines]
+    return [(address - start, cost, code.get(address, "?")) for address, cost in sorted(top)]
+
+
+def measure(
+    workload: str, bodies: int, ticks: int, warm: int, annotate: str | None = None, lines: int = 40
+) -> dict:
+    """The figures of one counted run: per body-step in all, in the kernels, by kernel function
+    and by kind of instruction; with ``annotate``, that function's most executed instructions."""
+    for tool in ("valgrind", "callgrind_control", "nm", "objdump"):
         if shutil.which(tool) is None:
             raise SystemExit(f"kernel_instructions: {tool} is not on the PATH")
     # Load (or compile) the kernels natively first: callgrind must not watch a compile. Valgrind
@@ -193,7 +295,10 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
                 process.kill()
         steps = int((workdir / "done").read_text())
         dumps = sorted(workdir.glob("callgrind.out.*"))
-        total, own, calls = attribute(dumps[-1], workdir / "symbols")
+        costs, called = instruction_costs(dumps[-1])
+        symbols = Symbols(workdir / "symbols")
+        code = disassemble(workdir)
+    total, own, calls = attribute(costs, called, symbols)
     kernel = sum(own.values())
     functions = [
         {
@@ -212,6 +317,14 @@ def measure(workload: str, bodies: int, ticks: int, warm: int) -> dict:
         "per_step": total / steps,
         "kernel_per_step": kernel / steps,
         "functions": functions,
+        "kinds": {
+            kind: count / steps
+            for kind, count in sorted(kinds(costs, code).items(), key=lambda item: -item[1])
+        },
+        "annotated": [
+            {"offset": offset, "per_step": cost / steps, "instruction": text}
+            for offset, cost, text in (hottest(annotate, costs, code, symbols, lines) if annotate else [])
+        ],
     }
 
 
@@ -222,13 +335,17 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--ticks", type=int, default=10, help="ticks counted")
     parser.add_argument("--warm", type=int, default=60, help="ticks run before counting")
     parser.add_argument("--top", type=int, default=30, help="kernel functions listed")
+    parser.add_argument(
+        "--annotate", metavar="FUNCTION", help="list this kernel function's hottest instructions"
+    )
+    parser.add_argument("--lines", type=int, default=40, help="instructions listed by --annotate")
     parser.add_argument("--json", type=Path, help="also write the figures here")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.child:
         child(Path(args.child), args.workload, args.bodies, args.ticks, args.warm)
         return 0
-    figures = measure(args.workload, args.bodies, args.ticks, args.warm)
+    figures = measure(args.workload, args.bodies, args.ticks, args.warm, args.annotate, args.lines)
     print(
         f"{figures['workload']}, {figures['bodies']} bodies, {figures['body_steps']:,} body-steps counted: "
         f"{figures['per_step']:,.0f} instructions a body-step, "
@@ -238,6 +355,13 @@ def main(argv: list[str] | None = None) -> int:
     for row in figures["functions"][: args.top]:
         per_call = f"{row['per_call']:10.1f}" if row["per_call"] is not None else f"{'-':>10}"
         print(f"{row['function']:40} {row['per_step']:10.1f} {row['calls_per_step']:10.2f} {per_call}")
+    print(f"\n{'kind of instruction (kernels)':40} {'instr/step':>10}")
+    for kind, per_step in figures["kinds"].items():
+        print(f"{kind:40} {per_step:10.1f}")
+    if args.annotate:
+        print(f"\n{args.annotate}: its {len(figures['annotated'])} most executed instructions")
+        for row in figures["annotated"]:
+            print(f"  +{row['offset']:<6x} {row['per_step']:8.2f}  {row['instruction']}")
     if args.json:
         args.json.write_text(json.dumps(figures, indent=1) + "\n")
     return 0

@@ -76,10 +76,12 @@ def compare_engines(
             counts = sim.physics.counts  # type: ignore[attr-defined]
     assert counts is not None
     a, b = traces["reference"], traces["fast"]
-    result = Comparison(True, sum(1 for _ in a.open("rb")), counts.kernel, counts.reference)
-    result.touching, result.reasons = counts.touching, dict(counts.reasons)
-    if not same_run(a, b):
+    identical = same_run(a, b)
+    text = ""
+    if not identical:
         divergence = diff_traces(a, b, tol=0.0)
-        result.identical = False
-        result.divergence = divergence.describe() if divergence is not None else _first_line_difference(a, b)
-    return result
+        text = divergence.describe() if divergence is not None else _first_line_difference(a, b)
+    records = sum(1 for _ in a.open("rb"))
+    return Comparison(
+        identical, records, counts.kernel, counts.reference, text, counts.touching, dict(counts.reasons)
+    )

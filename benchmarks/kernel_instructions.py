@@ -164,12 +164,18 @@ class Symbols:
         )
         self.starts = [address for address, _ in self.table]
 
-    def owner(self, address: int) -> str | None:
-        """The kernel function holding ``address`` (the last one: within 64 KiB), or None."""
+    def locate(self, address: int) -> tuple[int, str] | None:
+        """``(start, name)`` of the kernel function holding ``address`` (the last one: within
+        64 KiB), or None."""
         k = bisect.bisect_right(self.starts, address) - 1
         if 0 <= k < len(self.table) - 1 or (k == len(self.table) - 1 and address - self.starts[k] < 1 << 16):
-            return self.table[k][1]
+            return self.table[k]
         return None
+
+    def owner(self, address: int) -> str | None:
+        """The name of the kernel function holding ``address``, or None."""
+        found = self.locate(address)
+        return found[1] if found is not None else None
 
     def starting_at(self, address: int) -> str | None:
         k = bisect.bisect_right(self.starts, address) - 1
@@ -246,13 +252,17 @@ def hottest(
     function: str, costs: dict[int, int], code: dict[int, str], symbols: Symbols, lines: int
 ) -> list[tuple[int, int, str]]:
     """``(offset in the function, instructions, text)`` of its ``lines`` most executed
-    instructions, in address order."""
-    start = next((address for address, name in symbols.table if name == function), None)
-    if start is None:
+    instructions, in address order (a name compiled twice counts both copies, each instruction's
+    offset from its own copy's start)."""
+    if all(name != function for _, name in symbols.table):
         raise SystemExit(f"kernel_instructions: no kernel function {function!r} in the code")
-    mine = [(address, cost) for address, cost in costs.items() if symbols.owner(address) == function]
+    mine = []
+    for address, cost in costs.items():
+        found = symbols.locate(address)
+        if found is not None and found[1] == function:
+            mine.append((address, cost, address - found[0]))
     top = sorted(mine, key=lambda item: -item[1])[:lines]
-    return [(address - start, cost, code.get(address, "?")) for address, cost in sorted(top)]
+    return [(offset, cost, code.get(address, "?")) for address, cost, offset in sorted(top)]
 
 
 def measure(

@@ -113,3 +113,17 @@ def test_a_functions_hottest_instructions_in_address_order(tool: ModuleType, tmp
     assert rows == [(0x0, 4, "push %rbp"), (0x4, 9, "vaddsd"), (0xC, 9, "vmulsd")]
     with pytest.raises(SystemExit, match=r"no kernel function 'sweep\.nothing'"):
         tool.hottest("sweep.nothing", costs, code, symbols, 3)
+
+
+def test_a_function_compiled_twice_counts_both_copies_from_their_own_starts(
+    tool: ModuleType, tmp_path: Path
+) -> None:
+    """Numba can compile one function twice (``_insert_level_2``, one per caller's types): both
+    copies carry its name, and each instruction's offset is from its own copy's start."""
+    second = "1200 _ZN6acphys4fast7kernels5sweep15find_collisionsB5v1239B40c8tJTIe\n"
+    (tmp_path / "symbols").write_text(SYMBOLS + second)
+    symbols = tool.Symbols(tmp_path / "symbols")
+    costs = {0x1104: 9, 0x1204: 7, 0x1208: 2}
+    code = {0x1104: "vaddsd", 0x1204: "vmulsd", 0x1208: "ret"}
+    rows = tool.hottest("sweep.find_collisions", costs, code, symbols, 2)
+    assert rows == [(0x4, 9, "vaddsd"), (0x4, 7, "vmulsd")]

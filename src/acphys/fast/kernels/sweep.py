@@ -654,6 +654,31 @@ def cliff_slide(tr, nx, ny, nz):
 
 
 @njit(cache=True, inline="always", _nrt=False)
+def placement_settled(tr, cell):
+    """Whether the placement insert that follows a landed step-down would answer OK and change
+    nothing, so that :func:`step_down` may take its answer without running it. ``cell`` is the
+    check cell the step-down's insert started in.
+
+    That insert returned OK with a valid contact plane, so its last pass collided the check
+    position with its check cell and then every other cell of the array there, each answering OK,
+    and re-homed the position into the cell holding sphere 0's centre. When that cell is the one
+    it started in and the array holds it alone, the placement insert repeats at the same position
+    that one cell's collisions: the same terrain triangle and distance (at least ``-EPSILON``, or
+    the step-down's pass would have been ADJUSTED); the contact plane it may set is the one the
+    step-down's pass set last; the cell list is the same; the re-homing adds a zero block offset
+    to float32 values the step-down's pass re-homed already. What the two inserts do differently
+    is ruled out by the rest: a body without CONTACT gets a collision normal from a placement
+    (``validate_walkable`` outside a step-down), and other bodies answer a placement otherwise
+    (``lonely``: no body is near the sweep). The placement then returns OK at the contact-plane
+    test, as the step-down's insert did.
+
+    Not retail: a shortcut past ``CTransition::transitional_insert`` (acclient.c:312833) called
+    from ``CTransition::step_down`` @ 0x0050B2A0 (acclient.c:312628), whose answer it gives.
+    """
+    return tr.lonely and tr.oi_state & OI_CONTACT and tr.check_cell == cell and tr.num_cells == 1
+
+
+@njit(cache=True, inline="always", _nrt=False)
 def step_down(w, tr, step_down_ht, z_val, deeper):
     """Lower the candidate by ``step_down_ht`` and insert it: 1 when it lands on a contact plane
     with normal z at least ``z_val`` and a placement re-insert there is OK, else 0 (or BAIL).
@@ -670,6 +695,7 @@ def step_down(w, tr, step_down_ht, z_val, deeper):
     tr.walk_interp = 1.0
     if not tr.step_up:
         add_offset_to_check_pos(tr, 0.0, 0.0, -step_down_ht)
+    cell = tr.check_cell
     ts = deeper(w, tr, 5)
     if ts == BAIL:
         return BAIL
@@ -679,6 +705,8 @@ def step_down(w, tr, step_down_ht, z_val, deeper):
     if tr.oi_state & OI_EDGE_SLIDE and not tr.step_up and tr.walkable:
         return bail(tr, R_SHAPES)  # check_walkable against a recorded walkable polygon
     tr.backup = tr.insert_type
+    if placement_settled(tr, cell):
+        return 1
     tr.insert_type = IT_PLACEMENT
     ts = deeper(w, tr, 1)
     if ts == BAIL:

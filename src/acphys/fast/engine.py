@@ -144,6 +144,7 @@ class FastPhysics(Physics):
     def _reload_all(self) -> None:
         for i in range(len(self._bodies)):
             self._load(i)
+        self.world_arrays.place_others()
         transition_from_pool(self._transition, self.world_arrays, self.world)
         self._grid[grid.MAX_REACH] = float(grid.reaches_now(self._records).max(initial=0.0))
         grid.grid_place_all(self._records, self._grid_heads)
@@ -217,6 +218,8 @@ class FastPhysics(Physics):
             "cells": arrays.cells,
             "landblock_index": arrays.landblock_index,
             "shadow_pool": arrays.shadow_pool,
+            "other_spans": arrays.other_spans,
+            "other_shapes": arrays.other_shapes,
             "heads": self._grid_heads,
             "grid": self._grid,
             "anims": self._animations.anims,
@@ -297,8 +300,11 @@ class FastPhysics(Physics):
         touched |= {arrays.cell_index(s.cell_id) for s in body.shadow_objects if s.cell is not None}
         touched.discard(-1)
         before = {k: arrays.shadow_list(k).tolist() for k in touched}
+        known = len(arrays.others)
         for k in touched:
             arrays.set_shadow_list(k, shadow_entries(arrays, k, arrays.land_cells[k], self._index))
+        if len(arrays.others) != known:
+            arrays.place_others()
         if body.detection_manager is not None:  # its detection may have watched or left cells
             arrays.refresh_uncovered()
             self._transition["memo_valid"] = False

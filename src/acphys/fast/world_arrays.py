@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from acphys.fast.layout import CELL
+from acphys.fast.statics import SHAPE_WIDTH, shape_arrays
 from acphys.math.cell_id import landblock_of
 from acphys.physics_obj import PhysicsObj
 from acphys.world.land_cell import LandCell
@@ -50,6 +51,10 @@ class WorldArrays:
     other_shadows: dict[tuple[int, int], ShadowObj] = field(default_factory=dict)
     #: ``id(object)`` to its index in ``others``.
     other_index: dict[int, int] = field(default_factory=dict)
+    #: Where each other object's shapes could answer a sweep (:mod:`acphys.fast.statics`):
+    #: ``other_spans[k]`` its rows of ``other_shapes``, as :func:`~acphys.fast.statics.shape_arrays`.
+    other_spans: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int32))
+    other_shapes: np.ndarray = field(default_factory=lambda: np.zeros((0, SHAPE_WIDTH), dtype=np.float64))
 
     def cell_index(self, cell_id: int) -> int:
         """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a loaded block)."""
@@ -80,6 +85,11 @@ class WorldArrays:
         cells["shadow_start"] = start
         cells["shadow_capacity"] = capacity
         self.shadow_pool = pool
+
+    def place_others(self) -> None:
+        """Measure again where the other objects' shapes lie (new arrays; a static object only
+        moves when something outside a step moves it)."""
+        self.other_spans, self.other_shapes = shape_arrays(self.others)
 
     def refresh_uncovered(self) -> None:
         """Mark again the cells the kernel cannot sweep through (global detection adds and drops
@@ -135,6 +145,7 @@ def build_world_arrays(world: World, bodies: Sequence[PhysicsObj]) -> WorldArray
     arrays.shadow_pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
     for k, entries in enumerate(lists):
         arrays.set_shadow_list(k, entries)
+    arrays.place_others()
     return arrays
 
 

@@ -2,7 +2,7 @@
 
 Numba hands an array to a compiled function as all of its fields (data, shape, strides, item
 size, ...), and a function that is not inlined takes them on the stack: a call passing the
-world's fifteen arrays on copied about a hundred words, and on 2,000 walkers about half of the
+world's arrays on copied about a hundred words, and on 2,000 walkers about half of the
 kernel's time went to such copies (``perf``, samples on the copying instructions). So the
 kernels take one record instead, ``w`` (:data:`CONTEXT`, passed as a pointer), and view an array
 where they use it (``bodies_of(w)``, ...; a view is two loads, inlined). Not retail: plumbing.
@@ -27,6 +27,8 @@ ARRAYS = (
     ("cells", CELL, 1),  # the land cells (acphys.fast.world_arrays)
     ("landblock_index", np.int32, 1),  # landblock id -> first cell's index (-1: not loaded)
     ("shadow_pool", np.int32, 1),  # the cells' shadow lists, end to end
+    ("other_spans", np.int32, 2),  # the static objects' rows of other_shapes (acphys.fast.statics)
+    ("other_shapes", np.float64, 2),  # their balls and columns
     ("heads", np.int32, 1),  # the broad phase's buckets (acphys.fast.kernels.grid)
     ("grid", np.float64, 1),  # the broad phase's numbers (grid.MAX_REACH)
     ("anims", np.int32, 2),  # the animations (acphys.fast.kernels.sequence)
@@ -131,6 +133,16 @@ def landblock_index_of(w):
 @njit(cache=True, inline="always", _nrt=False)
 def shadow_pool_of(w):
     return _int32_1d(w.shadow_pool, w.shadow_pool_rows)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def other_spans_of(w):
+    return _int32_2d(w.other_spans, (w.other_spans_rows, w.other_spans_cols))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def other_shapes_of(w):
+    return _float64_2d(w.other_shapes, (w.other_shapes_rows, w.other_shapes_cols))
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -56,6 +56,8 @@ from acphys.fast.kernels.context import (
     grid_of,
     heads_of,
     landblock_index_of,
+    other_shapes_of,
+    other_spans_of,
     shadow_pool_of,
 )
 from acphys.fast.kernels.frame import (
@@ -89,6 +91,8 @@ from acphys.fast.kernels.path import (
     t9,
 )
 from acphys.fast.kernels.store import put
+from acphys.fast.statics import MARGIN as STATIC_MARGIN
+from acphys.fast.statics import UNBOUNDED
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.world.terrain import WaterType
 
@@ -319,6 +323,39 @@ def _may_answer(w, tr, j):
     return not bodies_of(w)[j].collider or not out_of_reach(w, tr, j)
 
 
+@njit(cache=True, _nrt=False)
+def statics_out_of_reach(w, tr, k):
+    """Whether every static object shadowed in cell ``k`` lies out of the sweep's reach: each of
+    its balls and columns (:mod:`acphys.fast.statics`) farther from every moving sphere than their
+    largest radius (which ``radsum`` gives the second sphere too) and ``MARGIN``. Such objects
+    answer OK and change nothing a step reads, wherever they stand in the list; an object the
+    kernel cannot bound is never out of reach, nor is anything from a sphere that is not a
+    number. Not retail: passes ``CPhysicsObj::FindObjCollisions`` (acclient.c:316158) by.
+    """
+    cell = cells_of(w)[k]
+    pool, spans, shapes = shadow_pool_of(w), other_spans_of(w), other_shapes_of(w)
+    bx, by = block_origin(tr.check_cell_id)
+    reach = 0.0
+    for t in range(tr.num_sphere):
+        reach = max(reach, tr.global_sphere[t, 3])
+    for i in range(cell.num_shadows):
+        entry = pool[cell.shadow_start + i]
+        if entry >= 0:
+            continue
+        first, count = spans[-1 - entry, 0], spans[-1 - entry, 1]
+        if count == UNBOUNDED:
+            return False
+        for row in range(first, first + count):
+            limit = shapes[row, 3] + reach + STATIC_MARGIN
+            for t in range(tr.num_sphere):
+                dx = bx + tr.global_sphere[t, 0] - shapes[row, 0]
+                dy = by + tr.global_sphere[t, 1] - shapes[row, 1]
+                dz = 0.0 if shapes[row, 4] else tr.global_sphere[t, 2] - shapes[row, 2]
+                if not dx * dx + dy * dy + dz * dz > limit * limit:
+                    return False
+    return True
+
+
 @njit(cache=True, inline="always", _nrt=False)
 def find_obj_collisions(w, tr, k):
     """Ask the bodies shadowed in cell ``k``, in the list's order, to collide with the sweep
@@ -334,7 +371,7 @@ def find_obj_collisions(w, tr, k):
     """
     if tr.insert_type == IT_INITIAL_PLACEMENT:
         return OK
-    if cells_of(w)[k].num_others:
+    if cells_of(w)[k].num_others and not statics_out_of_reach(w, tr, k):
         return bail(tr, R_STATIC)  # a static object's shapes are the reference's
     if tr.lonely:
         return OK

@@ -1,0 +1,120 @@
+"""Static objects in the kernel (:mod:`acphys.fast.statics`): a sweep out of every static shape's
+reach stays in the kernel, a nearer one goes to the reference path, and the traces agree."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from acphys.fast.differential import compare_engines
+from acphys.fast.statics import UNBOUNDED, reach_shapes, shape_arrays
+from acphys.scenario import parse_scenario
+from acphys.simulation import Simulation
+
+#: Landblock 0xA9B4's south-west corner in landblock-global metres (0xA9 and 0xB4 blocks of 192 m).
+BX, BY = 0xA9 * 192.0, 0xB4 * 192.0
+
+#: A pillar (a cylsphere), a rock (two spheres, turned to face east) and a crate (a box: a
+#: physics BSP), each in the middle of its own cell of a flat landblock 50 m high.
+STATICS = """
+[setup.pillar]
+cylspheres = [{ low_pt = [0, 0, 0], radius = 0.8, height = 4.0 }]
+[setup.rock]
+spheres = [{ center = [0, 0, 0.5], radius = 0.5 }, { center = [1, 0, 0.5], radius = 0.25 }]
+[setup.crate]
+boxes = [{ min = [-1, -1, 0], max = [1, 1, 2] }]
+[[object]]
+name = "pillar"
+setup = "pillar"
+landblock = "0xA9B4"
+origin = [36.0, 36.0, 50.0]
+[[object]]
+name = "rock"
+setup = "rock"
+landblock = "0xA9B4"
+origin = [84.0, 36.0, 50.0]
+heading = 90.0
+[[object]]
+name = "crate"
+setup = "crate"
+landblock = "0xA9B4"
+origin = [132.0, 36.0, 50.0]
+"""
+
+
+def _world(bodies: str, duration: float = 6.0, engine: str = "reference") -> Simulation:
+    text = (
+        f'[scenario]\nname = "statics"\nduration = {duration}\ndriver_hz = 30.0\n'
+        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n' + STATICS + bodies
+    )
+    return parse_scenario(text, "<statics>", engine=engine)
+
+
+def _walker(name: str, x: float, y: float) -> str:
+    """A human walking north from ``(x, y)``."""
+    return (
+        f'[[body]]\nname = "{name}"\nlandblock = "0xA9B4"\norigin = [{x}, {y}, 50.0]\non_ground = true\n'
+        f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "WalkForward"\n'
+    )
+
+
+def _statics(sim: Simulation) -> dict[str, object]:
+    """The scenario's static objects by setup name: the objects shadowed in its cells that are
+    not bodies."""
+    bodies = {id(body) for body in sim.bodies}
+    found: dict[str, object] = {}
+    for key in sim.world.landscape.landblocks():
+        for cell in sim.world.landscape.get_landblock(key << 16).lcell:
+            for shadow in cell.shadow_objects:
+                obj = shadow.physobj
+                if id(obj) not in bodies:
+                    found[obj.part_array.setup.name] = obj
+    return found
+
+
+def test_the_shapes_a_sweep_could_meet() -> None:
+    """Placed by hand: the pillar's column stands on its bottom disc's centre with the cylinder's
+    radius; the rock's balls are its spheres, the second 1 m along the rock's local x, which its
+    heading of 90° (east) turns to global -y; the crate's ball is its BSP's bounding sphere at the
+    part's frame (a 2 x 2 x 2 m box: centre 1 m up, radius its half-diagonal, √3)."""
+    statics = _statics(_world(_walker("w", 10.0, 10.0)))
+    assert reach_shapes(statics["pillar"]) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(0.8), 1.0)]
+    assert reach_shapes(statics["rock"]) == [
+        pytest.approx((BX + 84.0, BY + 36.0, 50.5, 0.5, 0.0)),
+        pytest.approx((BX + 84.0, BY + 35.0, 50.5, 0.25, 0.0)),
+    ]
+    assert reach_shapes(statics["crate"]) == [
+        pytest.approx((BX + 132.0, BY + 36.0, 51.0, math.sqrt(3.0), 0.0))
+    ]
+
+
+def test_objects_the_kernel_cannot_bound() -> None:
+    """A BSP part at a zero scale (the reference raises), or an object with a weenie (the reference
+    asks it about itself): every sweep near them is the reference path's."""
+    statics = _statics(_world(_walker("w", 10.0, 10.0)))
+    crate, pillar = statics["crate"], statics["pillar"]
+    crate.part_array.parts[0].gfxobj_scale.z = 0.0
+    assert reach_shapes(crate) is None
+    pillar.weenie_obj = object()  # type: ignore[assignment]
+    spans, shapes = shape_arrays([statics["rock"], crate, pillar])
+    assert spans.tolist() == [[0, 2], [2, UNBOUNDED], [2, UNBOUNDED]]
+    assert shapes.shape == (2, 5)
+
+
+def test_walkers_pass_statics_by_in_the_kernel_and_meet_them_on_the_reference_path(tmp_path: Path) -> None:
+    """Two humans walk north in each object's cell: one 8 m to the side of the object, one
+    straight at it. The first is the kernel's all the way (it was handed back at every step
+    while a static shadow stood in its cell); the second reaches the object on the reference
+    path; the traces agree."""
+    bodies = "".join(
+        _walker(f"past-{n}", x - 8.0, 28.0) + _walker(f"into-{n}", x, 30.0)
+        for n, x in enumerate((36.0, 84.0, 132.0))
+    )
+    result = compare_engines(lambda engine: _world(bodies, engine=engine), tmp_path)
+    assert result.identical, result.divergence
+    assert result.reasons.get("a static object's shadow", 0) > 0
+    steps = 6.0 * 30
+    assert result.kernel_steps >= 3 * steps  # the three walkers passing by, every step
+    assert result.reference_steps > 0

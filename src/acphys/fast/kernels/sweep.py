@@ -706,8 +706,9 @@ def placement_settled(tr, cell):
     to float32 values the step-down's pass re-homed already. What the two inserts do differently
     is ruled out by the rest: a body without CONTACT gets a collision normal from a placement
     (``validate_walkable`` outside a step-down), and other bodies answer a placement otherwise
-    (``lonely``: no body is near the sweep). The placement then returns OK at the contact-plane
-    test, as the step-down's insert did.
+    (``lonely``: no body is near the sweep; static objects the step-down's pass found out of
+    reach are so again). The placement then returns OK at the contact-plane test, as the
+    step-down's insert did.
 
     Not retail: a shortcut past ``CTransition::transitional_insert`` (acclient.c:312833) called
     from ``CTransition::step_down`` @ 0x0050B2A0 (acclient.c:312628), whose answer it gives.

@@ -508,12 +508,14 @@ class FastPhysics(Physics):
         }
 
     def array_bytes(self) -> int:
-        """The bytes the kernel's arrays take: records, cells, shadow lists, grid, animations."""
+        """The bytes the kernel's arrays take: records, cells, shadow lists, static shapes, grid,
+        animations."""
         arrays = self._arrays
         held = [self._records, self._grid_heads, self._transition, self._log, self._moves, self._journal]
         held += [self._owed]
         if arrays is not None:
             held += [arrays.cells, arrays.shadow_pool, arrays.landblock_index]
+            held += [arrays.other_spans, arrays.other_shapes]
         held += [self._animations.anims, self._animations.pos_frames, self._animations.hooks]
         return sum(array.nbytes for array in held)
 

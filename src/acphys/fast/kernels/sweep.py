@@ -338,10 +338,14 @@ def statics_out_of_reach(w, tr, k):
     reach = 0.0
     for t in range(tr.num_sphere):
         reach = max(reach, tr.global_sphere[t, 3])
+    seen = 0
     for i in range(cell.num_shadows):
+        if seen == cell.num_others:  # the rest of the list holds bodies only
+            break
         entry = pool[cell.shadow_start + i]
         if entry >= 0:
             continue
+        seen += 1
         first, count = spans[-1 - entry, 0], spans[-1 - entry, 1]
         if count == UNBOUNDED:
             return False

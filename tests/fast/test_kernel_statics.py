@@ -90,11 +90,15 @@ def test_the_shapes_a_sweep_could_meet() -> None:
     ]
 
 
-def test_objects_the_kernel_cannot_bound() -> None:
-    """A BSP part at a zero scale (the reference raises), or an object with a weenie (the reference
+def test_a_negative_scale_and_objects_the_kernel_cannot_bound() -> None:
+    """A pillar turned inside out by a scale of -2 stands on the point its low point maps to, its
+    column as wide as the radius's length (the cylinder's test squares the negative radius sum).
+    A BSP part at a zero scale (the reference raises), or an object with a weenie (the reference
     asks it about itself): every sweep near them is the reference path's."""
     statics = _statics(_world(_walker("w", 10.0, 10.0)))
     crate, pillar = statics["crate"], statics["pillar"]
+    pillar.scale = -2.0
+    assert reach_shapes(pillar) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(1.6), 1.0)]
     crate.part_array.parts[0].gfxobj_scale.z = 0.0
     assert reach_shapes(crate) is None
     pillar.weenie_obj = object()  # type: ignore[assignment]

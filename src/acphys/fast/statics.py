@@ -59,7 +59,8 @@ def reach_shapes(obj: PhysicsObj) -> list[Shape] | None:
     object with a weenie (``FindObjCollisions`` asks it whether it is a creature, a player, ...), a
     particle emitter (its parts do not follow its frame), a BSP part without a bounding sphere, a
     cell or a positive scale (the reference raises on a zero one), a coordinate that is not
-    finite."""
+    finite. A negative scale turns a radius negative, which the shapes' tests square: the ball or
+    column takes its length."""
     if obj.weenie_obj is not None or obj.state & PhysicsState.PARTICLE_EMITTER:
         return None
     parts = obj.part_array
@@ -73,13 +74,15 @@ def reach_shapes(obj: PhysicsObj) -> list[Shape] | None:
             bound, scale = part.physics_sphere, f32(part.gfxobj_scale.z)
             if bound is None or not part.pos.objcell_id or not scale > 0.0:
                 return None
-            shapes.append((*_placed(part.pos, bound.center * scale), bound.radius * scale, 0.0))
+            shapes.append((*_placed(part.pos, bound.center * scale), abs(bound.radius) * scale, 0.0))
     elif parts.get_num_cylsphere():
+        at, scale = obj.position, obj.scale
         for cyl in parts.get_cylsphere():
-            shapes.append((*_placed(obj.position, cyl.low_pt * obj.scale), cyl.radius * obj.scale, 1.0))
+            shapes.append((*_placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), 1.0))
     else:
+        at, scale = obj.position, obj.scale
         for sphere in parts.get_sphere():
-            shapes.append((*_placed(obj.position, sphere.center * obj.scale), sphere.radius * obj.scale, 0.0))
+            shapes.append((*_placed(at, sphere.center * scale), abs(sphere.radius * scale), 0.0))
     if not all(math.isfinite(value) for shape in shapes for value in shape):
         return None
     return shapes

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from acphys.fast.differential import compare_engines
-from acphys.fast.statics import UNBOUNDED, reach_shapes, shape_arrays
+from acphys.fast.statics import BALL, COLUMN, PART_BALL, UNBOUNDED, reach_shapes, shape_arrays
 from acphys.scenario import parse_scenario
 from acphys.simulation import Simulation
 
@@ -81,13 +81,13 @@ def test_the_shapes_a_sweep_could_meet() -> None:
     heading of 90° (east) turns to global -y; the crate's ball is its BSP's bounding sphere at the
     part's frame (a 2 x 2 x 2 m box: centre 1 m up, radius its half-diagonal, √3)."""
     statics = _statics(_world(_walker("w", 10.0, 10.0)))
-    assert reach_shapes(statics["pillar"]) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(0.8), 1.0)]
+    assert reach_shapes(statics["pillar"]) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(0.8), COLUMN)]
     assert reach_shapes(statics["rock"]) == [
-        pytest.approx((BX + 84.0, BY + 36.0, 50.5, 0.5, 0.0)),
-        pytest.approx((BX + 84.0, BY + 35.0, 50.5, 0.25, 0.0)),
+        pytest.approx((BX + 84.0, BY + 36.0, 50.5, 0.5, BALL)),
+        pytest.approx((BX + 84.0, BY + 35.0, 50.5, 0.25, BALL)),
     ]
     assert reach_shapes(statics["crate"]) == [
-        pytest.approx((BX + 132.0, BY + 36.0, 51.0, math.sqrt(3.0), 0.0))
+        pytest.approx((BX + 132.0, BY + 36.0, 51.0, math.sqrt(3.0), PART_BALL))
     ]
 
 
@@ -99,7 +99,7 @@ def test_a_negative_scale_and_objects_the_kernel_cannot_bound() -> None:
     statics = _statics(_world(_walker("w", 10.0, 10.0)))
     crate, pillar = statics["crate"], statics["pillar"]
     pillar.scale = -2.0
-    assert reach_shapes(pillar) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(1.6), 1.0)]
+    assert reach_shapes(pillar) == [(BX + 36.0, BY + 36.0, 50.0, pytest.approx(1.6), COLUMN)]
     crate.part_array.parts[0].gfxobj_scale.z = 0.0
     assert reach_shapes(crate) is None
     pillar.weenie_obj = object()  # type: ignore[assignment]
@@ -127,11 +127,15 @@ def test_walkers_pass_statics_by_in_the_kernel_and_meet_them_on_the_reference_pa
 
 def _random_yard(seed: int) -> str:
     """A flat landblock strewn with pillars, rocks and crates (turned, some scaled) and, for each,
-    walkers, runners, jumpers and thrown balls starting a few metres away and heading for it or
-    past it, all of it drawn from ``seed``."""
+    walkers, runners, jumpers, thrown balls and spinning dumbbells starting a few metres away and
+    heading for it or past it, all of it drawn from ``seed``."""
     rng = random.Random(seed)
     text = [STATICS[: STATICS.index("[[object]]")]]
     text.append("[setup.ball]\nspheres = [{ center = [0, 0, 0.2], radius = 0.2 }]\n")
+    text.append(  # two spheres off its axis: a spin turns them within each sweep step
+        "[setup.dumbbell]\nspheres = [{ center = [-0.6, 0, 0.3], radius = 0.25 },"
+        " { center = [0.6, 0, 0.3], radius = 0.25 }]\n"
+    )
     spots = []
     for n in range(rng.randint(4, 8)):
         setup = rng.choice(["pillar", "rock", "crate"])
@@ -151,11 +155,12 @@ def _random_yard(seed: int) -> str:
         if rng.random() < 0.3:
             speed = rng.uniform(2.0, 8.0)
             vx, vy = speed * math.sin(math.radians(heading)), speed * math.cos(math.radians(heading))
+            setup, spin = rng.choice([("ball", 0.0), ("dumbbell", rng.uniform(-8.0, 8.0))])
             text.append(
-                f'[[body]]\nname = "{name}"\nsetup = "ball"\nlandblock = "0xA9B4"\n'
+                f'[[body]]\nname = "{name}"\nsetup = "{setup}"\nlandblock = "0xA9B4"\n'
                 f"origin = [{x:.2f}, {y:.2f}, {rng.uniform(50.5, 53.0):.2f}]\n"
                 f'state = ["gravity", "report_collisions"]\n'
-                f"velocity = [{vx:.2f}, {vy:.2f}, {rng.uniform(0, 4):.2f}]\n"
+                f"velocity = [{vx:.2f}, {vy:.2f}, {rng.uniform(0, 4):.2f}]\nomega = [0, 0, {spin:.2f}]\n"
             )
             continue
         text.append(

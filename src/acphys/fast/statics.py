@@ -7,8 +7,10 @@ crate), the kernel keeps only the places its collision shapes fill, in landblock
 a step reads when every moving sphere misses them:
 
 * a physics BSP is tried part by part, each first against the part's bounding sphere
-  (``CGfxObj::find_obj_collisions`` @ 0x00534700, acclient.c:356514): a **ball** of that sphere
-  at the part's frame and scale;
+  (``CGfxObj::find_obj_collisions`` @ 0x00534700, acclient.c:356514): a **part ball** of that
+  sphere at the part's frame and scale, met by the moving spheres as
+  ``SPHEREPATH::cache_localspace_sphere`` places them, the local spheres at the check position's
+  frame (the global spheres lag behind a sweep step's turn: they are only moved by offsets);
 * cylspheres (without a BSP) respond in every arm of ``CCylSphere::intersects_sphere`` @ 0x0053B440
   (acclient.c:362034) only after ``collides_with_sphere`` finds a moving sphere within the radius
   sum horizontally: an upright **column** of the cylinder's radius through its axis;
@@ -44,9 +46,11 @@ if TYPE_CHECKING:
 #: beyond the float32 rounding of positions (about 3e-5 m at 400 m), far below any shape (the
 #: reference's shadow files keep the same margin, ``acphys.world.obj_cell.SHADOW_REACH_MARGIN``).
 MARGIN = 0.01
-#: A row of :attr:`~acphys.fast.world_arrays.WorldArrays.other_shapes`: x, y, z, radius, and 1.0
-#: for a column (only x and y are measured) or 0.0 for a ball.
+#: A row of :attr:`~acphys.fast.world_arrays.WorldArrays.other_shapes`: x, y, z, radius, kind.
 SHAPE_WIDTH = 5
+#: Kinds of shape: a ball and a column (only x and y are measured) met by the global spheres, a
+#: part ball met by the local spheres at the check position's frame.
+BALL, COLUMN, PART_BALL = 0.0, 1.0, 2.0
 #: The count of an object whose shapes cannot be bounded: every sweep in its cells bails.
 UNBOUNDED = -1
 
@@ -74,15 +78,15 @@ def reach_shapes(obj: PhysicsObj) -> list[Shape] | None:
             bound, scale = part.physics_sphere, f32(part.gfxobj_scale.z)
             if bound is None or not part.pos.objcell_id or not scale > 0.0:
                 return None
-            shapes.append((*_placed(part.pos, bound.center * scale), abs(bound.radius) * scale, 0.0))
+            shapes.append((*_placed(part.pos, bound.center * scale), abs(bound.radius) * scale, PART_BALL))
     elif parts.get_num_cylsphere():
         at, scale = obj.position, obj.scale
         for cyl in parts.get_cylsphere():
-            shapes.append((*_placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), 1.0))
+            shapes.append((*_placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), COLUMN))
     else:
         at, scale = obj.position, obj.scale
         for sphere in parts.get_sphere():
-            shapes.append((*_placed(at, sphere.center * scale), abs(sphere.radius * scale), 0.0))
+            shapes.append((*_placed(at, sphere.center * scale), abs(sphere.radius * scale), BALL))
     if not all(math.isfinite(value) for shape in shapes for value in shape):
         return None
     return shapes

@@ -91,8 +91,8 @@ from acphys.fast.kernels.path import (
     t9,
 )
 from acphys.fast.kernels.store import put
+from acphys.fast.statics import COLUMN, PART_BALL, UNBOUNDED
 from acphys.fast.statics import MARGIN as STATIC_MARGIN
-from acphys.fast.statics import UNBOUNDED
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
 from acphys.world.terrain import WaterType
 
@@ -327,7 +327,8 @@ def _may_answer(w, tr, j):
 def statics_out_of_reach(w, tr, k):
     """Whether every static object shadowed in cell ``k`` lies out of the sweep's reach: each of
     its balls and columns (:mod:`acphys.fast.statics`) farther from every moving sphere than their
-    largest radius (which ``radsum`` gives the second sphere too) and ``MARGIN``. Such objects
+    largest radius (which ``radsum`` gives the second sphere too) and ``MARGIN`` (a part ball from
+    the spheres where the BSP test sees them). Such objects
     answer OK and change nothing a step reads, wherever they stand in the list; an object the
     kernel cannot bound is never out of reach, nor is anything from a sphere that is not a
     number. Not retail: passes ``CPhysicsObj::FindObjCollisions`` (acclient.c:316158) by.
@@ -351,13 +352,29 @@ def statics_out_of_reach(w, tr, k):
             return False
         for row in range(first, first + count):
             limit = shapes[row, 3] + reach + STATIC_MARGIN
+            kind = shapes[row, 4]
             for t in range(tr.num_sphere):
-                dx = bx + tr.global_sphere[t, 0] - shapes[row, 0]
-                dy = by + tr.global_sphere[t, 1] - shapes[row, 1]
-                dz = 0.0 if shapes[row, 4] else tr.global_sphere[t, 2] - shapes[row, 2]
+                x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
+                if kind == PART_BALL:  # where cache_localspace_sphere puts the sphere
+                    x, y, z = _at_check_frame(tr, t)
+                dx, dy, dz = bx + x - shapes[row, 0], by + y - shapes[row, 1], z - shapes[row, 2]
+                if kind == COLUMN:
+                    dz = 0.0
                 if not dx * dx + dy * dy + dz * dz > limit * limit:
                     return False
     return True
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _at_check_frame(tr, t):
+    """Local sphere ``t``'s centre at ``check_pos``'s frame (in its landblock)."""
+    m, o = tr.check_m, tr.check_origin
+    cx, cy, cz = tr.local_sphere[t, 0], tr.local_sphere[t, 1], tr.local_sphere[t, 2]
+    return (
+        cx * m[0] + cy * m[3] + cz * m[6] + o[0],
+        cx * m[1] + cy * m[4] + cz * m[7] + o[1],
+        cx * m[2] + cy * m[5] + cz * m[8] + o[2],
+    )
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -175,12 +175,14 @@ def test_inspector_timeline_and_playback(browser: Chromium, yard_page: Path) -> 
         " for (let i = 3; i < d.length; i += 4) if (d[i] > 200) n++; return n; })()"
     )
     assert marked > 20
-    # Play from 0 at 2x: time follows the clock.
+    # Play from 0 at 2x: time moves on, never ahead of twice the clock (however slowly a busy
+    # machine draws the frames).
+    started = time.monotonic()
     browser.evaluate("acphysViewer.setTime(0); acphysViewer.play()")
-    time.sleep(0.6)
-    playing = browser.evaluate("acphysViewer.time")
+    playing = browser.wait_for("acphysViewer.time > 0.2 && acphysViewer.time", timeout=25)
+    elapsed = time.monotonic() - started
     browser.evaluate("acphysViewer.pause()")
-    assert 0.2 < playing <= 4.0
+    assert 0.2 < playing <= 2.0 * elapsed + 0.1
     paused = browser.evaluate("acphysViewer.time")
     time.sleep(0.3)
     assert browser.evaluate("acphysViewer.time") == paused
@@ -189,8 +191,9 @@ def test_inspector_timeline_and_playback(browser: Chromium, yard_page: Path) -> 
 def test_a_hundred_bodies_play_smoothly(browser: Chromium, tmp_path: Path) -> None:
     """100 bodies for 20 s (60,100 records) play: frames are drawn and the replay's time moves
     on. How fast (the page's own work a frame, the frame rate, which depends on the GPU:
-    SwiftShader, a software rasteriser, is slow) is printed, never asserted (timings belong in
-    benchmarks, not tests)."""
+    SwiftShader, a software rasteriser, is slow, and on what else the machine runs) is printed,
+    never asserted (timings belong in benchmarks, not tests): the page plays until it has drawn
+    three frames (and 1.5 s), for as long as that takes within 25 s (the browser answers in 30)."""
     trace = tmp_path / "crowd.jsonl"
     write_synthetic_trace(trace, bodies=100, seconds=20.0)
     page = tmp_path / "crowd.html"
@@ -201,8 +204,14 @@ def test_a_hundred_bodies_play_smoothly(browser: Chromium, tmp_path: Path) -> No
         """new Promise((resolve) => {
           const v = acphysViewer, f0 = v.frames, t0 = v.time, c0 = performance.now();
           v.play();
-          setTimeout(() => { v.pause(); resolve({frames: v.frames - f0, advanced: v.time - t0,
-            seconds: (performance.now() - c0) / 1000, frameMs: v.frameMs}); }, 1500);
+          const check = setInterval(() => {
+            const seconds = (performance.now() - c0) / 1000;
+            if ((v.frames - f0 >= 3 && seconds >= 1.5) || seconds >= 25) {
+              clearInterval(check);
+              v.pause();
+              resolve({frames: v.frames - f0, advanced: v.time - t0, seconds, frameMs: v.frameMs});
+            }
+          }, 100);
         })"""
     )
     print(

@@ -107,4 +107,4 @@ def test_runs_that_differ_are_told_apart(tmp_path: Path) -> None:
     # The missile of ladder-07 flies at a wall, a static object: the kernel's while out of the
     # wall's reach, the reference path's at the wall.
     assert result.kernel_steps > 0 and result.reference_steps > 0
-    assert set(result.reasons) == {"a static object's shadow"}
+    assert set(result.reasons) == {"a static object within reach"}

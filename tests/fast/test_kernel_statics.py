@@ -119,7 +119,7 @@ def test_walkers_pass_statics_by_in_the_kernel_and_meet_them_on_the_reference_pa
     )
     result = compare_engines(lambda engine: _world(bodies, engine=engine), tmp_path)
     assert result.identical, result.divergence
-    assert result.reasons.get("a static object's shadow", 0) > 0
+    assert result.reasons.get("a static object within reach", 0) > 0
     steps = 6.0 * 30
     assert result.kernel_steps >= 3 * steps  # the three walkers passing by, every step
     assert result.reference_steps > 0
@@ -185,4 +185,4 @@ def test_random_yards_agree(seed: int, tmp_path: Path) -> None:
     text = _random_yard(seed)
     result = compare_engines(lambda engine: parse_scenario(text, f"<yard {seed}>", engine=engine), tmp_path)
     assert result.identical, f"seed {seed}: {result.divergence}"
-    assert result.kernel_steps > 0 and result.reasons.get("a static object's shadow", 0) > 0, result
+    assert result.kernel_steps > 0 and result.reasons.get("a static object within reach", 0) > 0, result

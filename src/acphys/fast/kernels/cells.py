@@ -25,7 +25,7 @@ BAIL = -1
 #: :data:`BAIL_REASONS`, by code.
 BAIL_REASONS = (
     "none",
-    "a static object's shadow",
+    "a static object within reach",
     "stepping up onto a body, landing on one, or a perfect clip",
     "a body the kernel cannot collide with",
     "a first touch the kernel does not report (a missile's, a callback's, as the environment)",

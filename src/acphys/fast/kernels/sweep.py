@@ -2,10 +2,11 @@
 
 Ports of :mod:`acphys.transition.transition` and :mod:`acphys.transition.object_info` for what an
 outdoor sweep meets: the terrain triangles of land cells (``validate_walkable``) and other
-bodies' spheres (:mod:`acphys.fast.kernels.contact`); the sphere path and collision record it
-moves and fills are :mod:`acphys.fast.kernels.path`. Everything else (a static object, a
-building, water depth of a partly wet cell, a cell the kernel does not know, a climb onto another
-body, nesting deeper than the compiled levels) hands the step back to the reference path: every
+bodies' spheres (:mod:`acphys.fast.kernels.contact`), static objects passed out of their reach
+(:func:`statics_out_of_reach`); the sphere path and collision record it moves and fills are
+:mod:`acphys.fast.kernels.path`. Everything else (a static object within reach, a building,
+water depth of a partly wet cell, a cell the kernel does not know, a climb onto another body,
+nesting deeper than the compiled levels) hands the step back to the reference path: every
 routine returns ``BAIL`` (-1) up the chain, and the tick restores the body as it was.
 
 The transition record ``tr`` (:data:`~acphys.fast.layout.TRANSITION`) is retail's pooled
@@ -381,7 +382,7 @@ def _at_check_frame(tr, t):
 def find_obj_collisions(w, tr, k):
     """Ask the bodies shadowed in cell ``k``, in the list's order, to collide with the sweep
     (:func:`~acphys.fast.kernels.contact.body_find_obj_collisions`) until one answers other than
-    OK; a cell holding a static object's shadow bails.
+    OK; a static object shadowed there within the sweep's reach bails.
 
     The bodies within reach are found through the grid (:mod:`acphys.fast.kernels.grid`): with
     none, every answer is OK and touches nothing; with one, it is the only answer that counts;

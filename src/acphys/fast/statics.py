@@ -71,20 +71,19 @@ def reach_shapes(obj: PhysicsObj) -> list[Shape] | None:
     if parts is None:
         return []  # FindObjCollisions tests nothing
     shapes: list[Shape] = []
+    at, scale = obj.position, obj.scale
     if obj.state & PhysicsState.HAS_PHYSICS_BSP:
         for part in parts.parts:
             if part.physics_bsp is None:
                 continue
-            bound, scale = part.physics_sphere, f32(part.gfxobj_scale.z)
-            if bound is None or not part.pos.objcell_id or not scale > 0.0:
+            bound, size = part.physics_sphere, f32(part.gfxobj_scale.z)
+            if bound is None or not part.pos.objcell_id or not size > 0.0:
                 return None
-            shapes.append((*_placed(part.pos, bound.center * scale), abs(bound.radius) * scale, PART_BALL))
+            shapes.append((*_placed(part.pos, bound.center * size), abs(bound.radius) * size, PART_BALL))
     elif parts.get_num_cylsphere():
-        at, scale = obj.position, obj.scale
         for cyl in parts.get_cylsphere():
             shapes.append((*_placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), COLUMN))
     else:
-        at, scale = obj.position, obj.scale
         for sphere in parts.get_sphere():
             shapes.append((*_placed(at, sphere.center * scale), abs(sphere.radius * scale), BALL))
     if not all(math.isfinite(value) for shape in shapes for value in shape):

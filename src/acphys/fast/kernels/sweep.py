@@ -329,10 +329,10 @@ def statics_out_of_reach(w, tr, k):
     """Whether every static object shadowed in cell ``k`` lies out of the sweep's reach: each of
     its balls and columns (:mod:`acphys.fast.statics`) farther from every moving sphere than their
     largest radius (which ``radsum`` gives the second sphere too) and ``MARGIN`` (a part ball from
-    the spheres where the BSP test sees them). Such objects
-    answer OK and change nothing a step reads, wherever they stand in the list; an object the
-    kernel cannot bound is never out of reach, nor is anything from a sphere that is not a
-    number. Not retail: passes ``CPhysicsObj::FindObjCollisions`` (acclient.c:316158) by.
+    the spheres where the BSP test sees them). Such objects answer OK and change nothing a step
+    reads, wherever they stand in the list; an object the kernel cannot bound is never out of
+    reach, nor is anything from a sphere that is not a number. Not retail: passes
+    ``CPhysicsObj::FindObjCollisions`` (acclient.c:316158) by.
     """
     cell = cells_of(w)[k]
     pool, spans, shapes = shadow_pool_of(w), other_spans_of(w), other_shapes_of(w)

@@ -178,8 +178,9 @@ class Symbols:
         return found[1] if found is not None else None
 
     def starting_at(self, address: int) -> str | None:
-        k = bisect.bisect_right(self.starts, address) - 1
-        return self.table[k][1] if k >= 0 and self.starts[k] == address else None
+        """The name of the kernel function that starts at ``address``, or None."""
+        found = self.locate(address)
+        return found[1] if found is not None and found[0] == address else None
 
 
 def attribute(

@@ -353,8 +353,14 @@ def frame_rotate(origin, q, m, w):
 def frame_interpolate_rotation(origin, q, m, start_q, end_q, t):
     """Slerp from ``start_q`` to ``end_q`` by ``t`` along the shorter arc, set on the frame ``origin, q, m``.
 
-    At ``t == 1`` (a sweep's last step) two of the three sines are known without a call: the
-    same values.
+    At ``t == 1`` (a sweep's last step) the weights are taken as 0 and 1 without ``acos`` and
+    ``sin``: retail's are ``+0`` (``sin(omega * 0)`` times a positive ``1 / sin(omega)``) and
+    ``sin(omega) * (1 / sin(omega))``, within a double's ulp of 1 (or 1 exactly, from the linear
+    blend it falls back to when that product passes 1 or the two are within EPSILON). Both
+    quaternions hold float32 values (``set_rotate`` stored them), and ``set_rotate`` reads the
+    blend through float32: an end component scaled by ``1 - 2**-53`` rounds back to itself there,
+    a zero keeps its sign, and the zero start term adds nothing but its sign to a zero. So every
+    branch stores what weights 0 and 1 store.
 
     Port of :meth:`acphys.math.frame.Frame.interpolate_rotation`.
     Retail: Frame::interpolate_rotation @ 0x00535390 (acclient.c:357257)
@@ -366,18 +372,13 @@ def frame_interpolate_rotation(origin, q, m, start_q, end_q, t):
     if cosom < 0.0:
         cosom = -cosom
         ew, ex, ey, ez = -ew, -ex, -ey, -ez
-    if 1.0 - cosom <= EPSILON:
+    if t == 1.0 or 1.0 - cosom <= EPSILON:
         scale0, scale1 = 1.0 - t, t
     else:
         omega = math.acos(cosom)  # in (0, pi/2]: sin(omega) > 0
-        sin_omega = math.sin(omega)
-        inv_sin = 1.0 / sin_omega
-        if t == 1.0:  # the last step: sin(omega * 0) is 0 and sin(1 * omega) is sin(omega)
-            scale0 = inv_sin * 0.0
-            scale1 = sin_omega * inv_sin
-        else:
-            scale0 = inv_sin * math.sin(omega * (1.0 - t))
-            scale1 = math.sin(t * omega) * inv_sin
+        inv_sin = 1.0 / math.sin(omega)
+        scale0 = inv_sin * math.sin(omega * (1.0 - t))
+        scale1 = math.sin(t * omega) * inv_sin
         if not (0.0 <= scale0 <= 1.0 and 0.0 <= scale1 <= 1.0):
             scale0, scale1 = 1.0 - t, t
     return frame_set_rotate(

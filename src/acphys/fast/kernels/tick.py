@@ -69,7 +69,7 @@ from acphys.fast.kernels.frame import (
 from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
-from acphys.fast.kernels.store import fill, put
+from acphys.fast.kernels.store import copy_record, fill, put
 from acphys.fast.kernels.sweep import find_transitional_position, nobody_near, transition_init
 from acphys.fast.layout import MAX_CELLS, MAX_COLLIDE, MAX_RECORDS
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState
@@ -953,8 +953,8 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
             return LOG_FULL, i
         if counters[OWED] + MAX_STEPS_PER_UPDATE * DEFERRED_PER_STEP > w.owed_rows:
             return LOG_FULL, i
-        saved[0] = b
-        saved_tr[0] = tr
+        copy_record(saved[0], b)
+        copy_record(saved_tr[0], tr)
         logged, moved, steps, indebted = counters[LOGGED], counters[MOVES], counters[STEPS], counters[OWED]
         touching = counters[TOUCHING]
         physics_time = clock[1]
@@ -964,8 +964,8 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
         if status != 0:
             counters[REASON] = tr.bail
             _undo(w)
-            bodies[i] = saved[0]
-            tr_array[0] = saved_tr[0]
+            copy_record(b, saved[0])
+            copy_record(tr, saved_tr[0])
             counters[LOGGED], counters[MOVES] = logged, moved
             counters[STEPS], counters[OWED] = steps, indebted
             counters[TOUCHING] = touching

@@ -33,14 +33,16 @@ from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.sync import load_body, store_body
-from acphys.fast.world_arrays import WorldArrays, build_world_arrays, shadow_entries
+from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
-from acphys.math.cell_id import format_cell_id
+from acphys.math.cell_id import format_cell_id, landblock_of
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
 from acphys.trace import heading_of, motion_record
+from acphys.world.land_cell import LandCell
 from acphys.world.obj_cell import ShadowObj
+from acphys.world.terrain import WaterType
 from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
@@ -127,6 +129,8 @@ class FastPhysics(Physics):
         observer = self._writer.write_step if self._writer is not None else None
         reason = "gone"
         if self.world.has_object(body):
+            cells = (body.cell, *(shadow.cell for shadow in body.shadow_objects))
+            self._read_landblocks([cell.id for cell in cells if isinstance(cell, LandCell)])
             reason = uncovered_reason(body, arrays.cell_index, observer)
         record = self._records[i]
         load_body(record, body, cell, reason is None)
@@ -140,6 +144,25 @@ class FastPhysics(Physics):
             record["shadow_cell_id"][s] = shadow.cell_id
             record["shadow_cell"][s] = arrays.cell_index(shadow.cell_id) if shadow.cell is not None else -1
             record["shadow_slot"][s] = shadow.index
+
+    def _read_landblocks(self, cell_ids: list[int]) -> bool:
+        """Give the kernel the landblocks of the land cells ``cell_ids`` that it does not know:
+        ones without terrain, which the world makes up past its edge, or ones loaded since the
+        arrays were made. Their cells are the world's own, so both paths list the same shadows
+        in them. False when it knew them all or the world makes none of them."""
+        assert self._arrays is not None
+        arrays = self._arrays
+        blocks = []
+        for key in sorted({landblock_of(cell_id) for cell_id in cell_ids if arrays.cell_index(cell_id) < 0}):
+            block = self.world.landscape.get_landblock(key << 16)
+            if block is not None:
+                blocks.append((block.lcell, int(block.water_type)))
+                continue
+            void = [self.world.get_cell((key << 16) | low) for low in range(1, BLOCK_CELLS + 1)]
+            if all(isinstance(cell, LandCell) for cell in void):
+                blocks.append((void, int(WaterType.NOT_WATER)))
+        arrays.add_landblocks(blocks, self._index)
+        return bool(blocks)
 
     def _reload_all(self) -> None:
         for i in range(len(self._bodies)):
@@ -202,11 +225,17 @@ class FastPhysics(Physics):
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
             elif status == kernels.LOG_FULL:  # the trace log and the hooks are done above; the moves:
                 self._replay_moves()
-            elif status == kernels.FALLBACK:
+            elif status == kernels.UNREAD and self._read_landblocks([self._unread_cell()]):
+                pass  # the step runs again, in the kernel
+            elif status in (kernels.FALLBACK, kernels.UNREAD):
                 self._count_reason(start)
                 self._reference_update(start)
                 start += 1
         self.world.physics_time = float(self._clock[1])
+
+    def _unread_cell(self) -> int:
+        """The land cell whose landblock the kernel asked for (``UNREAD``)."""
+        return int(self._counters[kernels.UNREAD_CELL])
 
     def _context(self) -> np.ndarray:
         """The kernel's world record over the arrays as they are now: made again when one of them

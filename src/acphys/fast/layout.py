@@ -201,6 +201,7 @@ TRANSITION = np.dtype(
         ("cell_ids", "u4", MAX_CELLS),
         # the kernel's own: why the last step was handed back (acphys.fast.kernels.cells.BAIL_REASONS)
         ("bail", "i4"),
+        ("unread_cell", "u4"),  # with bail R_UNREAD: the land cell whose landblock the arrays lack
         # no other body is filed near the whole sweep: every body's find_obj_collisions is OK
         ("lonely", "u1"),
         # the last cell list found (find_cell_list is a function of the cell id and the spheres'

@@ -86,6 +86,34 @@ class WorldArrays:
         cells["shadow_capacity"] = capacity
         self.shadow_pool = pool
 
+    def add_landblocks(self, blocks: Sequence[tuple[Sequence[LandCell], int]], index: dict[int, int]) -> None:
+        """Know more landblocks, each its 64 land cells (in the order of their ids) and its water
+        type, with the shadow lists read from their cells (``index``: ``id(body)`` to the
+        engine's number). Indices already given stay: the cells go after the others, in new
+        arrays."""
+        first, known = len(self.land_cells), len(self.others)
+        records = []
+        for land_cells, block_water_type in blocks:
+            b = len(self.land_cells) // BLOCK_CELLS
+            self.landblock_index[landblock_of(land_cells[0].id)] = b
+            self.land_cells.extend(land_cells)
+            records.append(_cell_records(land_cells, b, block_water_type))
+        if not records:
+            return
+        new = self.land_cells[first:]
+        lists = [shadow_entries(self, first + i, cell, index) for i, cell in enumerate(new)]
+        capacity = np.array([_room(len(entries)) for entries in lists], dtype=np.int32)
+        cells = np.concatenate(records)
+        cells["shadow_capacity"] = capacity
+        cells["shadow_start"] = len(self.shadow_pool) + np.concatenate(([0], np.cumsum(capacity)[:-1]))
+        self.cells = np.concatenate((self.cells, cells))
+        room = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
+        self.shadow_pool = np.concatenate((self.shadow_pool, room))
+        for i, entries in enumerate(lists):
+            self.set_shadow_list(first + i, entries)
+        if len(self.others) != known:
+            self.place_others()
+
     def place_others(self) -> None:
         """Measure again where the other objects' shapes lie (new arrays; a static object only
         moves when something outside a step moves it)."""
@@ -113,40 +141,35 @@ def _uncovered(cell: LandCell) -> bool:
 
 
 def build_world_arrays(world: World, bodies: Sequence[PhysicsObj]) -> WorldArrays:
-    """The kernel's view of ``world``, whose simulated ``bodies`` are numbered in table order."""
+    """The kernel's view of ``world``'s landblocks, whose simulated ``bodies`` are numbered in
+    table order."""
     landscape = world.landscape
     blocks = [landscape.get_landblock(key << 16) for key in sorted(landscape.landblocks())]
-    landblock_index = np.full(0x10000, -1, dtype=np.int32)
-    cells = np.zeros(BLOCK_CELLS * len(blocks), dtype=CELL)
-    land_cells: list[LandCell] = []
-    for b, block in enumerate(blocks):
-        landblock_index[landblock_of(block.id)] = b
-        for i, cell in enumerate(block.lcell):
-            k = BLOCK_CELLS * b + i
-            land_cells.append(cell)
-            record = cells[k]
-            record["cell_id"] = cell.id
-            record["landblock"] = b
-            record["water_type"] = int(cell.water_type)
-            record["block_water_type"] = int(block.water_type)
-            record["num_polys"] = len(cell.polygons)
-            for p, poly in enumerate(cell.polygons):
-                for v, vertex in enumerate(poly.vertices):
-                    record["vertex"][p, v] = (vertex.x, vertex.y, vertex.z)
-                n = poly.plane.N
-                record["plane"][p] = (n.x, n.y, n.z, poly.plane.d)
-            record["uncovered"] = _uncovered(cell)
+    arrays = WorldArrays(
+        np.zeros(0, dtype=CELL), np.full(0x10000, -1, dtype=np.int32), np.zeros(0, dtype=np.int32), []
+    )
     index = {id(body): i for i, body in enumerate(bodies)}
-    arrays = WorldArrays(cells, landblock_index, np.zeros(0, dtype=np.int32), land_cells)
-    lists = [shadow_entries(arrays, k, cell, index) for k, cell in enumerate(land_cells)]
-    capacity = np.array([_room(len(entries)) for entries in lists], dtype=np.int32)
-    cells["shadow_capacity"] = capacity
-    cells["shadow_start"] = np.concatenate(([0], np.cumsum(capacity)[:-1])) if len(capacity) else capacity
-    arrays.shadow_pool = np.full(int(capacity.sum()), -(2**31), dtype=np.int32)
-    for k, entries in enumerate(lists):
-        arrays.set_shadow_list(k, entries)
-    arrays.place_others()
+    arrays.add_landblocks([(block.lcell, int(block.water_type)) for block in blocks], index)
     return arrays
+
+
+def _cell_records(land_cells: Sequence[LandCell], b: int, block_water_type: int) -> np.ndarray:
+    """The records of landblock ``b``'s land cells (their triangles, water, what is uncovered);
+    their shadow lists are set apart."""
+    records = np.zeros(len(land_cells), dtype=CELL)
+    for record, cell in zip(records, land_cells, strict=True):
+        record["cell_id"] = cell.id
+        record["landblock"] = b
+        record["water_type"] = int(cell.water_type)
+        record["block_water_type"] = block_water_type
+        record["num_polys"] = len(cell.polygons)
+        for p, poly in enumerate(cell.polygons):
+            for v, vertex in enumerate(poly.vertices):
+                record["vertex"][p, v] = (vertex.x, vertex.y, vertex.z)
+            n = poly.plane.N
+            record["plane"][p] = (n.x, n.y, n.z, poly.plane.d)
+        record["uncovered"] = _uncovered(cell)
+    return records
 
 
 def _room(count: int) -> int:

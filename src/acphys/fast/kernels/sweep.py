@@ -42,6 +42,7 @@ from acphys.fast.kernels.cells import (
     R_NO_CELL,
     R_SHAPES,
     R_STATIC,
+    R_UNREAD,
     R_WATER,
     add_all_outside_cells,
     bail,
@@ -506,12 +507,13 @@ def find_cell_list(w, tr, want_cell):
         return -2
     for i in range(tr.num_cells):
         k = tr.cells[i]
-        if k < 0 or cells[k].uncovered:
+        if k < 0:
+            return _unread(tr, tr.cell_ids[i])
+        if cells[k].uncovered:
             tr.bail = R_CELL
             return -2
     if cell_index(landblock_index_of(w), cell_id) < 0:
-        tr.bail = R_CELL
-        return -2
+        return _unread(tr, cell_id)
     curr = -1
     for i in range(tr.num_cells):
         k = tr.cells[i]
@@ -524,6 +526,14 @@ def find_cell_list(w, tr, want_cell):
             curr = k
     _memo_store(tr, curr)
     return curr if want_cell else -1
+
+
+@njit(cache=True, _nrt=False)
+def _unread(tr, cell_id):
+    """Bail for land cell ``cell_id``, of a landblock the arrays lack (-2)."""
+    tr.bail = R_UNREAD if 1 <= (cell_id & 0xFFFF) <= 64 else R_CELL
+    tr.unread_cell = cell_id
+    return -2
 
 
 @njit(cache=True, inline="always", _nrt=False)

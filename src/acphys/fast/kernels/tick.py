@@ -38,6 +38,7 @@ from acphys.fast.kernels.cells import (
     R_NO_CELL,
     R_RECORDS,
     R_STATIC,
+    R_UNREAD,
     bail,
 )
 from acphys.fast.kernels.context import (
@@ -108,6 +109,7 @@ DONE = 0  # every body from the start index on was updated
 FALLBACK = 1  # the body at the index must be updated on the reference path
 GROW = 2  # a cell's shadow list is full (counters[GROW_CELL]); grow it and call again from the index
 LOG_FULL = 3  # the trace log is full; write it out and call again from the index
+UNREAD = 4  # a land cell of a landblock the arrays lack (counters[UNREAD_CELL]); read it, call again
 
 # Slots of the counters array.
 STEPS = 0  # body-steps the kernel took
@@ -118,7 +120,8 @@ GROW_CELL = 4
 REASON = 5  # why the last body handed its update back (acphys.fast.kernels.cells.BAIL_REASONS)
 OWED = 6  # rows in the deferred log (DEFERRED_*): what the engine does when the kernel returns
 TOUCHING = 7  # body-steps the kernel took whose sweep met another body
-NUM_COUNTERS = 8
+UNREAD_CELL = 8
+NUM_COUNTERS = 9
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
@@ -930,8 +933,8 @@ def update_object(w, tr, i, tracing):
 def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
-    Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW or LOG_FULL with
-    the body to go on from (not started, or rolled back).
+    Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW, LOG_FULL or
+    UNREAD with the body to go on from (not started, or rolled back).
 
     ``context``: the world (:mod:`acphys.fast.kernels.context`), its ``clock``
     ``[cur_time, physics_time, player index (-1: none), activity cull (1/0)]``.
@@ -963,6 +966,7 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
         status = update_object(w, tr, i, tracing)
         if status != 0:
             counters[REASON] = tr.bail
+            counters[UNREAD_CELL] = tr.unread_cell
             _undo(w)
             copy_record(b, saved[0])
             copy_record(tr, saved_tr[0])
@@ -972,6 +976,8 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
             clock[1] = physics_time
             if status == GROW:
                 return GROW, i
+            if counters[REASON] == R_UNREAD:
+                return UNREAD, i
             return FALLBACK, i
         b.stale = True
         grid_place(bodies, heads_of(w), i)

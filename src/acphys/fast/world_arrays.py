@@ -1,11 +1,12 @@
 """The world as the kernel reads it: land cells with their terrain, and who shadows into each.
 
 The kernel knows the land cells of the loaded landblocks (``LandBlock.lcell``), indexed
-``64 * landblock + (low word - 1)``, with their two triangles and water type. A cell it cannot
+``64 * landblock + (low word - 1)``, with their two triangles and water type, and those of the
+landblocks past the world's edge that bodies have reached (the terrain-less cells ``World.get_cell``
+makes there, read by :meth:`WorldArrays.add_landblocks` when the kernel asks). A cell it cannot
 sweep through alone is marked ``uncovered``: a building stands in it, global detection watches
-it (voyeurs), or an entry restriction is set; a step that would touch such a cell (or any cell
-the kernel does not know: an env cell, a cell of a landblock that is not loaded) runs on the
-reference path instead.
+it (voyeurs), or an entry restriction is set; a step that would touch such a cell (or an env
+cell) runs on the reference path instead.
 
 Each cell's shadow list is kept in the shadow pool, in the order of the reference
 ``ObjCell.shadow_objects``: a body's entry is its index in the engine's body table, any other

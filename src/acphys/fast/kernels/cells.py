@@ -3,8 +3,9 @@ shadows of other bodies in a cell.
 
 Ports of :mod:`acphys.world.land_cell` and of the outdoor half of
 :meth:`acphys.world.obj_cell.ObjCell.find_cell_list`, over the :data:`~acphys.fast.layout.CELL`
-records. A cell id the kernel does not know (an env cell, a land cell of a landblock that is not
-loaded) gives the index -1, and whoever meets one hands the step back (``BAIL``).
+records. A cell id the kernel does not know (an env cell, a land cell of a landblock the arrays
+lack) gives the index -1, and whoever meets one hands the step back (``BAIL``; for a land cell
+``R_UNREAD``, and the engine reads its landblock and runs the step again).
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ BAIL_REASONS = (
     "stepping up onto a body, landing on one, or a perfect clip",
     "a body the kernel cannot collide with",
     "a first touch the kernel does not report (a missile's, a callback's, as the environment)",
-    "a cell the kernel does not know (indoors, unloaded, a building or watchers)",
+    "a cell the kernel does not know (indoors, a building or watchers)",
     "leaving the known cells",
     "the water depth of a partly wet cell",
     "a walkable polygon, a collision or a back-face hit",

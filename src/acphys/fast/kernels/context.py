@@ -25,7 +25,7 @@ from acphys.fast.layout import BODY, CELL
 ARRAYS = (
     ("bodies", BODY, 1),  # the records, in table order
     ("cells", CELL, 1),  # the land cells (acphys.fast.world_arrays)
-    ("landblock_index", np.int32, 1),  # landblock id -> first cell's index (-1: not loaded)
+    ("landblock_index", np.int32, 1),  # landblock id -> its index in the cells // 64 (-1: not read)
     ("shadow_pool", np.int32, 1),  # the cells' shadow lists, end to end
     ("other_spans", np.int32, 2),  # the static objects' rows of other_shapes (acphys.fast.statics)
     ("other_shapes", np.float64, 2),  # their balls and columns

@@ -5,7 +5,7 @@ objects, a hook object that records ``add_anim_hook``), plays one with the refer
 the other into a body record for the kernel. When the reference queued no hook, the kernel must
 return STATUS_DONE with the identical offset frame (origin, quaternion, matrix), frame number,
 current node and list (the whole record is compared byte for byte with the reference sequence
-loaded afresh, and ``store_sequence`` must give back the reference's sequence). When the
+loaded afresh, and ``store_sequences`` must give back the reference's sequence). When the
 reference queued only AnimDone hooks, the kernel must play the quantum the same way, return
 STATUS_ANIM_DONE and count them in ``seq_anim_done``; when it queued any frame hook, the kernel
 must return STATUS_REFERENCE and leave the record as it was.
@@ -65,6 +65,11 @@ class HookRecorder:
 
 def body_record() -> np.record:
     return np.zeros(1, dtype=BODY).view(np.recarray)[0]
+
+
+def store(record: np.record, sequence: Sequence, table: list[Animation]) -> None:
+    """``store_sequences`` for one record."""
+    S.store_sequences(np.array([record], dtype=BODY), [sequence], table)
 
 
 def ft(f: Frame) -> tuple:
@@ -236,7 +241,7 @@ def play_one(seed: int, table: list[Animation], tables: tuple, index: dict[int, 
     mismatched = [name for name in BODY.names if record[name].tobytes() != want[name].tobytes()]
     assert not mismatched, (seed, dt, [(name, record[name], want[name]) for name in mismatched])
     assert record.tobytes() == want.tobytes(), seed
-    S.store_sequence(record, mine, table)
+    store(record, mine, table)
     assert_same_sequence(mine, ref)
     # the nodes that stay are the same objects, the dropped ones were the head
     kept = nodes_before[len(nodes_before) - len(mine.anim_list) :]
@@ -290,18 +295,18 @@ def test_load_and_store(quiet_world):
         nodes = len(seq.anim_list)
         assert record.seq_nodes == nodes and not record.seq_anim[nodes:].any()
         fresh = Sequence()
-        S.store_sequence(record, fresh, table)  # new nodes, the same fields
+        store(record, fresh, table)  # new nodes, the same fields
         assert_same_sequence(fresh, seq)
         assert all(a is not b for a, b in zip(fresh.anim_list, seq.anim_list, strict=True))
         kept = list(seq.anim_list)
-        S.store_sequence(record, seq, table)  # the same nodes, kept
+        store(record, seq, table)  # the same nodes, kept
         assert seq.anim_list == kept and all(a is b for a, b in zip(seq.anim_list, kept, strict=True))
 
     empty = Sequence()
     record = body_record()
     assert S.load_sequence(record, empty, index)
     assert (record.seq_nodes, record.seq_curr, record.seq_first_cyclic) == (0, -1, -1)
-    S.store_sequence(record, empty, table)
+    store(record, empty, table)
     assert empty.anim_list == [] and empty.curr_anim is None and empty.first_cyclic is None
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from acphys.fast.kernels.sequence import animation_table, load_sequence, store_sequence
+from acphys.fast.kernels.sequence import animation_table, load_sequence, store_sequences
 from acphys.motion.animation import Animation
 from acphys.motion.sequence import Sequence
 
@@ -38,6 +38,6 @@ class AnimationTable:
         self._add(sequence)
         return load_sequence(record, sequence, self._index)
 
-    def store(self, record: np.void, sequence: Sequence) -> None:
-        """Copy the record's sequence back into ``sequence``."""
-        store_sequence(record, sequence, self.animations)
+    def store(self, records: np.ndarray, sequences: list[Sequence | None]) -> None:
+        """Copy each record's sequence back into its sequence (None: a body without one)."""
+        store_sequences(records, sequences, self.animations)

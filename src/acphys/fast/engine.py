@@ -17,6 +17,9 @@ bodies directly, so after a flush the records are read again before the next ker
 
 from __future__ import annotations
 
+import gc
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -32,7 +35,7 @@ from acphys.fast.kernels.cells import BAIL_REASONS
 from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
-from acphys.fast.sync import load_body, store_body
+from acphys.fast.sync import load_body, store_bodies
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
@@ -67,6 +70,19 @@ class Counts:
     def reference_share(self) -> float:
         total = self.kernel + self.reference
         return self.reference / total if total else 0.0
+
+
+@contextmanager
+def _cycle_collector_paused() -> Iterator[None]:
+    """Python's cycle collector held off: a write-back makes tens of thousands of small objects,
+    none of them in a cycle, and every collection they would set off walks the whole world."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 class FastPhysics(Physics):
@@ -362,27 +378,33 @@ class FastPhysics(Physics):
         moves = int(self._counters[kernels.MOVES])
         if not len(stale) and not moves:
             return
+        with _cycle_collector_paused():
+            self._write_back(stale)
+
+    def _write_back(self, stale: np.ndarray) -> None:
+        """:meth:`flush` for the ``stale`` bodies' rows."""
         arrays = self._arrays
+        assert arrays is not None
         transition_to_pool(self._transition, arrays, self.world)
         self._replay_moves()
-        moved = set()
-        for i in stale.tolist():
-            record = self._records[i]
-            body = self._bodies[i]
-            moved.add(id(body))
-            store_body(record, body)
-            if body.part_array is not None:
-                self._animations.store(record, body.part_array.sequence)
-                body.part_array.update_parts(body.position.frame)
-            body.position.objcell_id = int(record["cell_id"])
-            if body.part_array is not None:
-                for part in body.part_array.parts:
-                    part.pos.objcell_id = body.position.objcell_id
-            if record["shadows_moved"]:
-                ids = record["shadow_cell_id"][: record["num_shadow"]].tolist()
-                body.shadow_objects = [ShadowObj(body, cell_id) for cell_id in ids]
-                record["shadows_moved"] = False
-            record["stale"] = False
+        bodies = [self._bodies[i] for i in stale.tolist()]
+        rows = self._records[stale]
+        store_bodies(rows, bodies)
+        parts = [body.part_array for body in bodies]
+        self._animations.store(rows, [p.sequence if p is not None else None for p in parts])
+        names = ("cell_id", "shadows_moved", "num_shadow", "shadow_cell_id")
+        columns = (rows[name].tolist() for name in names)
+        for body, body_parts, cell_id, shadows_moved, count, ids in zip(bodies, parts, *columns, strict=True):
+            body.position.objcell_id = cell_id
+            if body_parts is not None:
+                body_parts.update_parts(body.position.frame)
+                for part in body_parts.parts:
+                    part.pos.objcell_id = cell_id
+            if shadows_moved:
+                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
+        self._records["stale"][stale] = False
+        self._records["shadows_moved"][stale] = False
+        moved = {id(body) for body in bodies}
         cells = arrays.cells
         for k in np.flatnonzero(cells["dirty"]).tolist():
             self._write_cell(k, moved)

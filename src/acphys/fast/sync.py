@@ -1,33 +1,26 @@
 """Hand-off between a body's record and its reference ``PhysicsObj``, both ways, exactly.
 
 :func:`load_body` copies what a step reads and writes from the object into the record (every
-value is already a float32 or a double there, so the copy is exact); :func:`store_body` copies it
-back. Cells, shadows and the objects lists of cells are handed over by the engine, which knows
+value is already a float32 or a double there, so the copy is exact); :func:`store_bodies` copies
+it back. Cells, shadows and the objects lists of cells are handed over by the engine, which knows
 the order they changed in (:mod:`acphys.fast.engine`).
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
-from acphys.fast.layout import BODY
 from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
 from acphys.math.vector import Vector3
 from acphys.physics_obj import PhysicsObj
 
-#: Where each field of a body record stands in ``record.item()``.
-_FIELD = {name: index for index, name in enumerate(BODY.names)}
-
 
 def _vec(v: Vector3) -> tuple[float, float, float]:
     return (v.x, v.y, v.z)
-
-
-def _vector(values: np.ndarray) -> Vector3:
-    x, y, z = values.tolist()
-    return Vector3(x, y, z)
 
 
 def _reach(extents: list[float], scale: float) -> float:
@@ -99,48 +92,80 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         record["free_heading"] = parts.allows_free_heading()
 
 
-def store_body(record: np.void, body: PhysicsObj) -> None:
-    """Copy what a kernel step changes from ``record`` back into ``body`` (not its cell, shadows or
-    sequence, which the engine hands back, nor its parts, which follow its sequence)."""
-    values = record.item()  # every field at once: a tenth of the cost of reading them one by one
-    field = _FIELD
+#: The fields :func:`store_bodies` hands back.
+_STORED = (
+    "state",
+    "transient",
+    "update_time",
+    "player_distance",
+    "player_vector",
+    "origin",
+    "q",
+    "m",
+    "velocity",
+    "acceleration",
+    "omega",
+    "cached_velocity",
+    "contact_n",
+    "contact_d",
+    "contact_cell_id",
+    "sliding_normal",
+    "jumped_this_frame",
+    "step_events",
+    "colliding_with_environment",
+    "num_records",
+    "record_obj",
+    "record_time",
+    "record_ethereal",
+)
 
-    def vector(name: str) -> Vector3:
-        return _vector(values[field[name]])
 
-    body._state = values[field["state"]]
-    body._transient_state = values[field["transient"]]
-    body.update_time = values[field["update_time"]]
-    body.player_distance = values[field["player_distance"]]
-    body.player_vector = vector("player_vector")
-    frame = body.position.frame
-    frame.origin = vector("origin")
-    frame.qw, frame.qx, frame.qy, frame.qz = values[field["q"]].tolist()
-    frame.m[:] = values[field["m"]].tolist()
-    body.velocity = vector("velocity")
-    body.acceleration = vector("acceleration")
-    body.omega = vector("omega")
-    body.cached_velocity = vector("cached_velocity")
-    body.contact_plane = Plane(vector("contact_n"), values[field["contact_d"]])
-    body.contact_plane_cell_id = values[field["contact_cell_id"]]
-    body.sliding_normal = vector("sliding_normal")
-    body.jumped_this_frame = bool(values[field["jumped_this_frame"]])
-    if not values[field["step_events"]]:
-        body.step_events.clear()  # the kernel's step recorded them
-    body.colliding_with_environment = bool(values[field["colliding_with_environment"]])
-    count = values[field["num_records"]]
+def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
+    """Copy what kernel steps change from ``records`` back into ``bodies``, one record each (not
+    their cells, shadows or sequences, which the engine hands back; their parts are placed at the
+    frames). Each field is read for all of them at once, as Python values."""
+    columns = {name: records[name].tolist() for name in _STORED}
+    for j, body in enumerate(bodies):
+        values = {name: column[j] for name, column in columns.items()}
+        body._state = values["state"]
+        body._transient_state = values["transient"]
+        body.update_time = values["update_time"]
+        body.player_distance = values["player_distance"]
+        body.player_vector = Vector3(*values["player_vector"])
+        frame = body.position.frame
+        frame.origin = Vector3(*values["origin"])
+        frame.qw, frame.qx, frame.qy, frame.qz = values["q"]
+        frame.m[:] = values["m"]
+        body.velocity = Vector3(*values["velocity"])
+        body.acceleration = Vector3(*values["acceleration"])
+        body.omega = Vector3(*values["omega"])
+        body.cached_velocity = Vector3(*values["cached_velocity"])
+        body.contact_plane = Plane(Vector3(*values["contact_n"]), values["contact_d"])
+        body.contact_plane_cell_id = values["contact_cell_id"]
+        body.sliding_normal = Vector3(*values["sliding_normal"])
+        body.jumped_this_frame = bool(values["jumped_this_frame"])
+        if not values["step_events"]:
+            body.step_events.clear()  # the kernel's step recorded them
+        body.colliding_with_environment = bool(values["colliding_with_environment"])
+        _store_records(body, values)
+        if body.part_array is not None:
+            body.part_array.update_parts(frame)
+
+
+def _store_records(body: PhysicsObj, values: dict[str, Any]) -> None:
+    """The body's collision records as the kernel left them (``values``: its record's fields):
+    the first ``num_records``, the others the kernel's steps ended."""
+    count = values["num_records"]
     if count and body.collision_table is None:
         body.collision_table = CollisionTable()
     table = body.collision_table
-    objects = values[field["record_obj"]][:count].tolist()
-    if table is not None:
-        kept = set(objects)
-        for object_id in table.ids():  # the records the kernel's steps ended
-            if object_id not in kept:
-                table.remove(object_id)
-    times = values[field["record_time"]].tolist()
-    ethereal = values[field["record_ethereal"]].tolist()
+    if table is None:
+        return
+    objects = values["record_obj"][:count]
+    times, ethereal = values["record_time"], values["record_ethereal"]
+    kept = set(objects)
+    for object_id in table.ids():  # the records the kernel's steps ended
+        if object_id not in kept:
+            table.remove(object_id)
     for r, object_id in enumerate(objects):  # known records clobbered in place, new ones appended
-        table.clobber(object_id, CollisionRecord(times[r], bool(ethereal[r])))  # type: ignore[union-attr]
-    if body.part_array is not None:
-        body.part_array.update_parts(frame)
+        table.clobber(object_id, CollisionRecord(times[r], bool(ethereal[r])))

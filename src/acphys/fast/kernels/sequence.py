@@ -147,42 +147,45 @@ def load_sequence(record: np.void, sequence: Sequence, anim_index: dict[int, int
     return True
 
 
-def store_sequence(record: np.void, sequence: Sequence, animations: list[Animation]) -> None:
-    """Copy ``record``'s ``seq_*`` fields back into ``sequence`` (``animations``: the table's rows).
+def store_sequences(
+    records: np.ndarray, sequences: list[Sequence | None], animations: list[Animation]
+) -> None:
+    """Copy each record's ``seq_*`` fields back into its sequence (None: a body without one;
+    ``animations``: the table's rows). Each field is read for all the records at once.
 
     The kernel only drops nodes from the head of the list, so when the record's nodes match the
     tail of ``sequence.anim_list`` those node objects are kept (the list is trimmed in place);
     otherwise the list is rebuilt with new nodes holding the record's fields.
     """
-    count = int(record["seq_nodes"])
-    rows = list(
-        zip(
-            [animations[row] for row in record["seq_anim"][:count].tolist()],
-            record["seq_framerate"][:count].tolist(),
-            record["seq_low"][:count].tolist(),
-            record["seq_high"][:count].tolist(),
-            strict=True,
-        )
-    )
-    nodes = sequence.anim_list
-    dropped = len(nodes) - count
-    if dropped >= 0 and all(
-        node.animation is row[0] and (node.framerate, node.low_frame, node.high_frame) == row[1:]
-        for node, row in zip(nodes[dropped:], rows, strict=True)
-    ):
-        del nodes[:dropped]
-    else:
-        fresh = []
-        for animation, rate, low, high in rows:
-            node = AnimSequenceNode.__new__(AnimSequenceNode)  # the record's fields, unrefitted
-            node.animation, node.framerate, node.low_frame, node.high_frame = animation, rate, low, high
-            fresh.append(node)
-        nodes[:] = fresh
-    sequence.curr_anim = nodes[int(record["seq_curr"])] if count else None
-    sequence.first_cyclic = nodes[int(record["seq_first_cyclic"])] if count else None
-    sequence.frame_number = float(record["seq_frame_number"])
-    sequence.velocity = Vector3(*record["seq_velocity"].tolist())
-    sequence.omega = Vector3(*record["seq_omega"].tolist())
+    names = ("seq_nodes", "seq_anim", "seq_framerate", "seq_low", "seq_high", "seq_curr", "seq_first_cyclic")
+    columns = [records[name].tolist() for name in names]
+    frame_numbers = records["seq_frame_number"].tolist()
+    velocities, omegas = records["seq_velocity"].tolist(), records["seq_omega"].tolist()
+    for j, sequence in enumerate(sequences):
+        if sequence is None:
+            continue
+        count, anims, rates, lows, highs, curr, first_cyclic = (column[j] for column in columns)
+        played = [animations[row] for row in anims[:count]]
+        rows = list(zip(played, rates[:count], lows[:count], highs[:count], strict=True))
+        nodes = sequence.anim_list
+        dropped = len(nodes) - count
+        if dropped >= 0 and all(
+            node.animation is row[0] and (node.framerate, node.low_frame, node.high_frame) == row[1:]
+            for node, row in zip(nodes[dropped:], rows, strict=True)
+        ):
+            del nodes[:dropped]
+        else:
+            fresh = []
+            for animation, rate, low, high in rows:
+                node = AnimSequenceNode.__new__(AnimSequenceNode)  # the record's fields, unrefitted
+                node.animation, node.framerate, node.low_frame, node.high_frame = animation, rate, low, high
+                fresh.append(node)
+            nodes[:] = fresh
+        sequence.curr_anim = nodes[curr] if count else None
+        sequence.first_cyclic = nodes[first_cyclic] if count else None
+        sequence.frame_number = frame_numbers[j]
+        sequence.velocity = Vector3(*velocities[j])
+        sequence.omega = Vector3(*omegas[j])
 
 
 # -- playback --------------------------------------------------------------------------------------

@@ -17,8 +17,8 @@ from acphys.world.land_cell import LandCell
 
 #: One flat landblock and, heading out of it: a walker west (it stops a few centimetres short
 #: of the edge, where the reference's sweep leaves it), a walker south-west into the corner, a
-#: runner north over the edge, and a ball thrown east over the edge, falling where there is no
-#: ground.
+#: runner north over the edge, a ball thrown east over the edge, falling where there is no
+#: ground, and a ball falling there from the start.
 EDGE = """
 [scenario]
 name = "edge"
@@ -54,6 +54,13 @@ landblock = "0x8080"
 origin = [189.0, 100.0, 51.0]
 state = ["gravity"]
 velocity = [4.0, 0.0, 3.0]
+[[body]]
+name = "beyond"
+setup = "ball"
+landblock = "0x8180"
+origin = [10.0, 20.0, 60.0]
+state = ["gravity"]
+velocity = [1.0, 0.0, 0.0]
 [[event]]
 at = 0.0
 body = "west"
@@ -81,7 +88,7 @@ def test_bodies_past_the_edge_stay_in_the_kernel(tmp_path: Path) -> None:
     result = compare_engines(_edge, tmp_path)
     assert result.identical, result.divergence
     assert result.reference_steps == 0, result.reasons
-    assert result.kernel_steps == 4 * 5 * 30
+    assert result.kernel_steps == 5 * 5 * 30
 
 
 def test_the_landblocks_past_the_edge_are_read_when_reached() -> None:
@@ -123,3 +130,26 @@ def test_reading_a_landblock_keeps_the_cells_known_and_lists_its_shadows() -> No
         assert arrays.shadow_list(k).tolist() == want
         listed += len(want)
     assert listed > 0  # the west walker's shadow, at least
+
+
+def test_a_landblock_loaded_where_the_kernel_read_none() -> None:
+    """A server loads the landblock a walker stands at the edge of: the kernel's arrays, which
+    held terrain-less cells there, are made again, the walker (still shadowed in the world's old
+    stand-ins for those cells) takes one step on the reference path, and both engines walk it on
+    into the new landblock, step for step."""
+    sims = {engine: _edge(engine) for engine in ("reference", "fast")}
+    crossed = False
+    for tick in range(120):
+        for sim in sims.values():
+            if tick == 45:  # the west walker has stood at the edge for a second
+                sim.world.set_flat_ground(0x7F80, 50.0)
+            sim.step()
+        states = [sim.physics.body_arrays(sim.bodies) for sim in sims.values()]
+        for name in ("cell_ids", "origins", "orientations", "velocities", "transient_states"):
+            want, got = (getattr(state, name) for state in states)
+            assert np.array_equal(want, got), (tick, name, want, got)
+        crossed |= int(states[1].cell_ids[0]) >> 16 == 0x7F80
+    fast = sims["fast"].physics
+    assert crossed
+    assert 0x7F80 not in fast.world_arrays.void_blocks
+    assert fast.counts.reasons == {"shadows in cells the kernel does not know": 1}

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from acphys.fast.layout import MAX_CELLS, MAX_RECORDS, MAX_SPHERES
 from acphys.flags import PhysicsState, TransientState
 from acphys.physics_obj import PhysicsObj
+from acphys.world.obj_cell import ObjCell
 
 _SHAPE_STATES = PhysicsState.PARTICLE_EMITTER | PhysicsState.HAS_PHYSICS_BSP
 #: Physics-state bits whose handling the kernel leaves to the reference path.
@@ -25,10 +26,13 @@ _UNCOVERED_STATES = _SHAPE_STATES | PhysicsState.HIDDEN | PhysicsState.ALIGN_PAT
 
 
 def uncovered_reason(
-    body: PhysicsObj, cell_index: Callable[[int], int], observer: object | None = None
+    body: PhysicsObj, land_cell: Callable[[int], ObjCell | None], observer: object | None = None
 ) -> str | None:
-    """Why the kernel cannot step ``body`` now, or None when it can. ``cell_index`` maps a cell
-    id to the kernel's index (-1: unknown); ``observer`` is the engine's own step observer."""
+    """Why the kernel cannot step ``body`` now, or None when it can. ``land_cell`` gives the cell
+    the kernel knows by an id (None: unknown): the body's cell and every cell it shadows into must
+    be that very cell (a landblock loaded since leaves the world's terrain-less stand-ins for its
+    cells in the lists of the bodies that reached them); ``observer`` is the engine's own step
+    observer."""
     if body.parent is not None or (body.children is not None and body.children.objects):
         return "held or holding"
     parts = body.part_array
@@ -66,11 +70,11 @@ def uncovered_reason(
         return "an observer"
     if body.on_step is not None:
         return "a step callback"
-    if body.cell is not None and cell_index(body.position.objcell_id) < 0:
+    if body.cell is not None and land_cell(body.position.objcell_id) is not body.cell:
         return "not in a known land cell"
     shadows = body.shadow_objects
     if len(shadows) > MAX_CELLS or any(
-        shadow.cell is not None and cell_index(shadow.cell_id) < 0 for shadow in shadows
+        shadow.cell is not None and land_cell(shadow.cell_id) is not shadow.cell for shadow in shadows
     ):
         return "shadows in cells the kernel does not know"
     return None

@@ -141,13 +141,13 @@ class FastPhysics(Physics):
         assert self._arrays is not None
         body = self._bodies[i]
         arrays = self._arrays
+        present = self.world.has_object(body)
+        if present:  # the landblocks of its cells first, so that its cell has an index
+            cells = (body.cell, *(shadow.cell for shadow in body.shadow_objects))
+            self._read_landblocks([c.id for c in cells if isinstance(c, LandCell)])
         cell = arrays.cell_index(body.position.objcell_id) if body.cell is not None else -1
         observer = self._writer.write_step if self._writer is not None else None
-        reason = "gone"
-        if self.world.has_object(body):
-            cells = (body.cell, *(shadow.cell for shadow in body.shadow_objects))
-            self._read_landblocks([cell.id for cell in cells if isinstance(cell, LandCell)])
-            reason = uncovered_reason(body, arrays.cell_index, observer)
+        reason = uncovered_reason(body, arrays.land_cell, observer) if present else "gone"
         record = self._records[i]
         load_body(record, body, cell, reason is None)
         if body.part_array is not None and not self._animations.load(record, body.part_array.sequence):
@@ -177,8 +177,16 @@ class FastPhysics(Physics):
             void = [self.world.get_cell((key << 16) | low) for low in range(1, BLOCK_CELLS + 1)]
             if all(isinstance(cell, LandCell) for cell in void):
                 blocks.append((void, int(WaterType.NOT_WATER)))
+                arrays.void_blocks.add(key)
         arrays.add_landblocks(blocks, self._index)
         return bool(blocks)
+
+    def _void_loaded(self) -> bool:
+        """Whether a landblock the arrays hold as terrain-less cells has since been added to the
+        world (the arrays are then made again)."""
+        assert self._arrays is not None
+        landscape = self.world.landscape
+        return any(landscape.get_landblock(key << 16) is not None for key in self._arrays.void_blocks)
 
     def _reload_all(self) -> None:
         for i in range(len(self._bodies)):
@@ -203,6 +211,9 @@ class FastPhysics(Physics):
             return False
         if elapsed < MIN_QUANTUM:
             return False
+        if self._arrays is not None and self._void_loaded():
+            self.flush()
+            self._arrays = None
         if self._arrays is None:
             self._build()
         if self._reload:

@@ -56,6 +56,13 @@ class WorldArrays:
     #: ``other_spans[k]`` its rows of ``other_shapes``, as :func:`~acphys.fast.statics.shape_arrays`.
     other_spans: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int32))
     other_shapes: np.ndarray = field(default_factory=lambda: np.zeros((0, SHAPE_WIDTH), dtype=np.float64))
+    #: The landblocks (``0xXXYY``) read as the terrain-less cells the world makes past its edge.
+    void_blocks: set[int] = field(default_factory=set)
+
+    def land_cell(self, cell_id: int) -> LandCell | None:
+        """The reference cell the kernel knows as ``cell_id``, or None."""
+        k = self.cell_index(cell_id)
+        return self.land_cells[k] if k >= 0 else None
 
     def cell_index(self, cell_id: int) -> int:
         """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a loaded block)."""

@@ -153,3 +153,30 @@ def test_a_landblock_loaded_where_the_kernel_read_none() -> None:
     assert crossed
     assert 0x7F80 not in fast.world_arrays.void_blocks
     assert fast.counts.reasons == {"shadows in cells the kernel does not know": 1}
+
+
+def test_a_landblock_loaded_renumbers_the_cells() -> None:
+    """Loading a landblock the arrays held as stand-ins makes the arrays again, landblocks in id
+    order, so the cells' indices change (and the transition's remembered cell list, of the old
+    indices, is dropped): a walker pressing into a stander in the middle of the landblock and a
+    body standing at the edge go on as on the reference engine, shadows, lists and all."""
+    text = EDGE[: EDGE.index("[setup.ball]")]
+    for name, x in (("edge", 0.3), ("pusher", 98.0), ("stander", 100.0)):
+        text += f'[[body]]\nname = "{name}"\nlandblock = "0x8080"\norigin = [{x}, 45.0, 50.0]\n'
+        text += "on_ground = true\nheading = 90.0\n"
+    text += '[[event]]\nat = 0.0\nbody = "pusher"\naction = "motion"\nmotion = "WalkForward"\n'
+    sims = {engine: parse_scenario(text, "<pushers>", engine=engine) for engine in ("reference", "fast")}
+    for tick in range(60):
+        for sim in sims.values():
+            if tick == 40:
+                sim.world.set_flat_ground(0x7F80, 50.0)
+            sim.step()
+    lists = []
+    for sim in sims.values():
+        for body in sim.bodies:
+            for shadow in body.shadow_objects:
+                names = [s.physobj.name for s in shadow.cell.shadow_objects]
+                lists.append((body.name, shadow.cell_id, body.position.frame.origin.x, names))
+    half = len(lists) // 2
+    assert lists[:half] == lists[half:]
+    assert ("pusher", 0x80800022) in [entry[:2] for entry in lists]

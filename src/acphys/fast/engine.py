@@ -134,6 +134,7 @@ class FastPhysics(Physics):
         self._records = np.zeros(len(self._bodies), dtype=BODY)
         self._uncovered = [""] * len(self._bodies)
         self._arrays = build_world_arrays(self.world, self._bodies)
+        self._transition["memo_valid"] = False  # its cell list holds the old arrays' indices
         self._reload = True
 
     def _load(self, i: int) -> None:

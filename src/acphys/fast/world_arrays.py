@@ -65,7 +65,7 @@ class WorldArrays:
         return self.land_cells[k] if k >= 0 else None
 
     def cell_index(self, cell_id: int) -> int:
-        """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a loaded block)."""
+        """The kernel index of land cell ``cell_id``, or -1 (not a land cell of a landblock read)."""
         low = cell_id & 0xFFFF
         if not 1 <= low <= BLOCK_CELLS:
             return -1

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import acphys
-from acphys.fast.kernels.grid import reach_now, reaches_now
+from acphys.fast.kernels.grid import bucket_of, heads_for, reach_now, reaches_now
 
 MARGIN = 1e-3  # REACH_MARGIN
 
@@ -48,3 +48,26 @@ def test_the_grids_longest_reach_is_the_longest_current_one() -> None:
     records = physics._records
     assert (records["q"][:, 1] == 0.0).all() and (records["q"][:, 2] == 0.0).all()
     assert physics._grid[0] == records["hreach"].max() < records["reach"].min()
+
+
+def test_the_hash_grows_with_the_population() -> None:
+    """Four buckets a body or more, a power of four from 65,536 to 4,194,304."""
+    for count, bits in ((0, 8), (16_384, 8), (16_385, 9), (100_000, 10), (10**7, 11)):
+        heads, got = heads_for(count)
+        assert got == bits and len(heads) == 4**bits and (heads == -1).all()
+
+
+def test_squares_side_by_side_share_lines_of_heads() -> None:
+    """Within a block of ``2 ** bits`` squares a side, a square's bucket is its place in the block
+    (rows of x) with its run of 16 moved by the block's hash: squares along x in one run sit in
+    neighbouring buckets, every bucket is in range (negative squares too), and the squares of one
+    block fill every bucket once."""
+    for bits in (8, 9):
+        side = 1 << bits
+        for tx0, ty in ((0, 0), (16 * 5, 7), (side * 3 + 32, side * 2 + 9), (-side, -1)):
+            buckets = [bucket_of(tx0 + k, ty, bits) for k in range(16)]
+            assert buckets == list(range(buckets[0], buckets[0] + 16)), (bits, tx0, ty)
+            assert all(0 <= b < side * side for b in buckets)
+    side = 1 << 8
+    block = {bucket_of(side * 2 + x, side + y, 8) for x in range(side) for y in range(side)}
+    assert len(block) == side * side

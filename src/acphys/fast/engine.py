@@ -112,8 +112,9 @@ class FastPhysics(Physics):
         #: Why each body is not covered ("" when it is): the first uncovered_reason.
         self._uncovered: list[str] = []
         self._animations = AnimationTable()
-        self._grid_heads = np.full(grid.BUCKETS, -1, dtype=np.int32)
-        self._grid = np.zeros(1, dtype=np.float64)
+        self._grid_heads, bits = grid.heads_for(0)
+        self._grid = np.zeros(grid.GRID_SLOTS, dtype=np.float64)
+        self._grid[grid.SPAN_BITS] = bits
         #: True once the objects may have changed behind the records (a flush, a new body).
         self._reload = True
         self._writer: Any = None
@@ -134,6 +135,8 @@ class FastPhysics(Physics):
         self._records = np.zeros(len(self._bodies), dtype=BODY)
         self._uncovered = [""] * len(self._bodies)
         self._arrays = build_world_arrays(self.world, self._bodies)
+        self._grid_heads, bits = grid.heads_for(len(self._bodies))
+        self._grid[grid.SPAN_BITS] = bits
         self._transition["memo_valid"] = False  # its cell list holds the old arrays' indices
         self._reload = True
 
@@ -195,7 +198,7 @@ class FastPhysics(Physics):
         self.world_arrays.place_others()
         transition_from_pool(self._transition, self.world_arrays, self.world)
         self._grid[grid.MAX_REACH] = float(grid.reaches_now(self._records).max(initial=0.0))
-        grid.grid_place_all(self._records, self._grid_heads)
+        grid.grid_place_all(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]))
         self._clock[1] = self.world.physics_time
         self._reload = False
 
@@ -370,7 +373,7 @@ class FastPhysics(Physics):
             self._load(j)
             reach = float(grid.reaches_now(self._records[j : j + 1])[0])
             self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
-            grid.grid_place(self._records, self._grid_heads, j)
+            grid.grid_place(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]), j)
         for k in touched:  # the bodies whose slots the step's removals and additions moved
             was = before[k]
             for slot, j in enumerate(arrays.shadow_list(k).tolist()):

@@ -6,7 +6,9 @@ shortcut, :meth:`acphys.body.reports.CollisionReports.out_of_reach`). So the ker
 bodies filed near the sweep: each body is filed by the ``TILE``-metre square (landblock-global
 metres) under its origin, in a hash of squares whose chains run through the records
 (``grid_bucket``, ``grid_next``, ``grid_prev``), and a sweep looks in every square within the
-reach of its spheres plus the longest reach of any body (``grid[MAX_REACH]``). Any body that
+reach of its spheres plus the longest reach of any body (``grid[MAX_REACH]``). The hash has
+four buckets a body or more (:func:`heads_for`), so few far bodies share a near square's chain.
+Any body that
 could answer other than OK is found that way, and the kernel hands such a step to the reference
 path; if none could, the reference would have answered OK too, whatever its list order.
 
@@ -30,14 +32,14 @@ from acphys.constants import BLOCK_LENGTH
 
 #: The side of a grid square, in metres.
 TILE = 4.0
-#: Buckets in the hash of squares (a power of two).
-BUCKETS = 1 << 16
-#: Squares a side of the block of squares whose buckets keep their places (``2 ** SPAN_BITS``:
-#: 1,024 m; its ``SPAN ** 2`` buckets are all of them).
-SPAN_BITS = 8
-SPAN = 1 << SPAN_BITS
-#: ``grid`` (float64) slots.
+#: The hash's buckets are a block of squares ``2 ** bits`` a side (``bits`` from ``MIN_BITS`` to
+#: ``MAX_BITS``: 65,536 to 4,194,304 buckets, 1 to 8 km of ground).
+MIN_BITS = 8
+MAX_BITS = 11
+#: ``grid`` (float64) slots: the longest reach, and the hash's ``bits``.
 MAX_REACH = 0
+SPAN_BITS = 1
+GRID_SLOTS = 2
 #: A sweep whose search would cover more squares than this asks the cell's whole list instead.
 MAX_TILES = 64
 
@@ -48,14 +50,30 @@ def block_origin(cell_id):
     return ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH, ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH
 
 
+def heads_for(count: int) -> tuple[np.ndarray, int]:
+    """Empty chain heads for ``count`` bodies, at least four buckets a body, and their ``bits``."""
+    bits = MIN_BITS
+    while 4**bits < 4 * count and bits < MAX_BITS:
+        bits += 1
+    return np.full(4**bits, -1, dtype=np.int32), bits
+
+
 @njit(cache=True, inline="always", _nrt=False)
-def bucket_of(tx, ty):
-    """The hash bucket of square ``(tx, ty)``: the square's place in its block of ``SPAN`` squares a
-    side (in rows of x), its run of 16 moved elsewhere by a hash of the block. Squares side by
-    side share a cache line of heads, so one search and the next body's read a few lines."""
-    local = (ty & (SPAN - 1)) * SPAN + (tx & (SPAN - 1))
-    block = ((tx >> SPAN_BITS) * 73856093) ^ ((ty >> SPAN_BITS) * 19349663)
-    return (local ^ (block << 4)) & (BUCKETS - 1)
+def span_bits(grid):
+    """The hash's ``bits`` (``grid[SPAN_BITS]``)."""
+    return np.int64(grid[SPAN_BITS])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def bucket_of(tx, ty, bits):
+    """The hash bucket of square ``(tx, ty)``: the square's place in its block of ``2 ** bits``
+    squares a side (in rows of x), its run of 16 moved elsewhere by a hash of the block. Squares
+    side by side share a cache line of heads, so one search and the next body's read a few
+    lines."""
+    side = np.int64(1) << bits
+    local = ((ty & (side - 1)) << bits) | (tx & (side - 1))
+    block = ((tx >> bits) * 73856093) ^ ((ty >> bits) * 19349663)
+    return (local ^ (block << 4)) & ((side << bits) - 1)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -96,7 +114,7 @@ def grid_remove(bodies, heads, i):
 
 
 @njit(cache=True, _nrt=False)
-def grid_place(bodies, heads, i):
+def grid_place(bodies, heads, bits, i):
     """File body ``i`` by the square under its origin; a body without shadows is not filed. A body
     already in its square's bucket stays where it is in the chain (searches do not depend on
     the chains' order: they count the bodies they find, or look for any)."""
@@ -105,7 +123,7 @@ def grid_place(bodies, heads, i):
         grid_remove(bodies, heads, i)
         return
     x0, y0 = block_origin(b.cell_id)
-    bucket = bucket_of(math.floor((x0 + b.origin[0]) / TILE), math.floor((y0 + b.origin[1]) / TILE))
+    bucket = bucket_of(math.floor((x0 + b.origin[0]) / TILE), math.floor((y0 + b.origin[1]) / TILE), bits)
     if bucket == b.grid_bucket:
         return
     grid_remove(bodies, heads, i)
@@ -119,7 +137,7 @@ def grid_place(bodies, heads, i):
 
 
 @njit(cache=True, _nrt=False)
-def grid_place_all(bodies, heads):
+def grid_place_all(bodies, heads, bits):
     """File every body afresh."""
     heads[:] = -1
     for i in range(len(bodies)):
@@ -127,4 +145,4 @@ def grid_place_all(bodies, heads):
         bodies[i].grid_next = -1
         bodies[i].grid_prev = -1
     for i in range(len(bodies)):
-        grid_place(bodies, heads, i)
+        grid_place(bodies, heads, bits, i)

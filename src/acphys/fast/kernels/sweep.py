@@ -72,7 +72,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalize_check_small,
 )
-from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of, reach_now
+from acphys.fast.kernels.grid import MAX_REACH, MAX_TILES, TILE, block_origin, bucket_of, reach_now, span_bits
 from acphys.fast.kernels.path import (
     IT_INITIAL_PLACEMENT,
     IT_PLACEMENT,
@@ -286,14 +286,14 @@ def nobody_near(w, tr, x0, y0, x1, y1):
     """Whether no body but the mover reaches into the landblock-global box ``[x0, x1] × [y0, y1]``
     (its origin within its reach of the box)."""
     bodies, heads = bodies_of(w), heads_of(w)
-    reach = grid_of(w)[MAX_REACH]
+    reach, bits = grid_of(w)[MAX_REACH], span_bits(grid_of(w))
     tx0, tx1 = math.floor((x0 - reach) / TILE), math.floor((x1 + reach) / TILE)
     ty0, ty1 = math.floor((y0 - reach) / TILE), math.floor((y1 + reach) / TILE)
     if (tx1 - tx0 + 1) * (ty1 - ty0 + 1) > MAX_TILES:
         return False
     for tx in range(tx0, tx1 + 1):
         for ty in range(ty0, ty1 + 1):
-            j = heads[bucket_of(tx, ty)]
+            j = heads[bucket_of(tx, ty, bits)]
             while j >= 0:
                 other = bodies[j]
                 if j != tr.oi_body:
@@ -408,7 +408,7 @@ def _ask_bodies_near(w, tr, k):
     bodies, heads = bodies_of(w), heads_of(w)
     cell = cells_of(w)[k]
     x0, y0 = block_origin(tr.check_cell_id)
-    reach = grid_of(w)[MAX_REACH]
+    reach, bits = grid_of(w)[MAX_REACH], span_bits(grid_of(w))
     low_x = low_y = math.inf
     high_x = high_y = -math.inf
     for s in range(tr.num_sphere):
@@ -423,7 +423,7 @@ def _ask_bodies_near(w, tr, k):
         found = -1
         for tx in range(tx0, tx1 + 1):
             for ty in range(ty0, ty1 + 1):
-                j = heads[bucket_of(tx, ty)]
+                j = heads[bucket_of(tx, ty, bits)]
                 while j >= 0:
                     if _asks(w, tr, j, k) and _may_answer(w, tr, j):
                         count += 1

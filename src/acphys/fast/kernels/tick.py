@@ -67,7 +67,7 @@ from acphys.fast.kernels.frame import (
     v_length,
     v_normalized,
 )
-from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned
+from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned, span_bits
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import copy_record, fill, put
@@ -980,6 +980,6 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
                 return UNREAD, i
             return FALLBACK, i
         b.stale = True
-        grid_place(bodies, heads_of(w), i)
+        grid_place(bodies, heads_of(w), span_bits(grid_of(w)), i)
         grid_of(w)[MAX_REACH] = max(grid_of(w)[MAX_REACH], reach_now(b))
     return DONE, n

@@ -3,7 +3,12 @@ objects are the reference engine's, to the types of their numbers."""
 
 from __future__ import annotations
 
+import numpy as np
+
 import acphys
+from acphys.body.reports import CollisionRecord, CollisionTable
+from acphys.fast.layout import BODY
+from acphys.fast.sync import load_body, store_bodies
 from acphys.motion.animation import AnimSequenceNode
 
 
@@ -35,3 +40,26 @@ def test_the_written_back_objects_are_the_references() -> None:
             assert ours.frame_number == ref.frame_number and type(ours.frame_number) is float
             assert [_node(n) for n in ours.anim_list] == [_node(n) for n in ref.anim_list]
             assert all(type(n.low_frame) is int and type(n.framerate) is float for n in ours.anim_list)
+
+
+def test_collision_records_go_over_oldest_first_and_come_back_so() -> None:
+    """The kernel keeps a body's collision records oldest first and derives retail's iteration
+    order from that (bucket ``(id ^ (id >> 8)) & 3``, the newest first in a bucket); they are read
+    in the order they were stored, not in that iteration order, and written back as the kernel
+    holds them (a record it ended and made again is a new one)."""
+    sim = acphys.load_scenario(engine="fast")
+    sim.step()
+    body = sim.bodies[0]
+    table = CollisionTable()
+    for object_id in (0x50000004, 0x50000008, 0x50000001):  # buckets 0, 0 and 1
+        table.clobber(object_id, CollisionRecord(1.0, False))
+    assert table.ids() == [0x50000008, 0x50000004, 0x50000001] != table.oldest_first()
+    body.collision_table = table
+    record = np.zeros(1, dtype=BODY)[0]
+    load_body(record, body, -1, True)
+    assert record["record_obj"][: record["num_records"]].tolist() == [0x50000004, 0x50000008, 0x50000001]
+    # the kernel ended 0x50000004 and made it again: now the newest
+    record["record_obj"][:3] = (0x50000008, 0x50000001, 0x50000004)
+    store_bodies(np.array([record]), [body])
+    assert body.collision_table.oldest_first() == [0x50000008, 0x50000001, 0x50000004]
+    assert body.collision_table.ids() == [0x50000004, 0x50000008, 0x50000001]

@@ -129,6 +129,11 @@ class CollisionTable:
     def remove(self, object_id: int) -> None:
         del self._records[object_id]
 
+    def oldest_first(self) -> list[int]:
+        """The keys in the order they were first stored (not retail's iteration order: the
+        order :meth:`ids` derives it from)."""
+        return list(self._records)
+
     def ids(self) -> list[int]:
         """The keys in retail iteration order (``HashBaseIter::Next``)."""
         newest_first = list(reversed(self._records))

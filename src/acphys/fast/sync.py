@@ -61,7 +61,8 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["colliding_with_environment"] = body.colliding_with_environment
     record["has_movement_manager"] = body.movement_manager is not None
     table = body.collision_table
-    ids = table.ids()[: record["record_time"].size] if table is not None else []
+    # Oldest first, as the kernel keeps them (it derives retail's iteration order from that).
+    ids = table.oldest_first()[: record["record_time"].size] if table is not None else []
     record["num_records"] = len(ids)
     for r, object_id in enumerate(ids):
         kept = table.get(object_id)
@@ -153,19 +154,17 @@ def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
 
 
 def _store_records(body: PhysicsObj, values: dict[str, Any]) -> None:
-    """The body's collision records as the kernel left them (``values``: its record's fields):
-    the first ``num_records``, the others the kernel's steps ended."""
+    """The body's collision records as the kernel left them (``values``: its record's fields): the
+    first ``num_records``, oldest first (a record the kernel's steps ended and made again is a new
+    one, as in the reference's table); the table is stored afresh in that order."""
     count = values["num_records"]
     if count and body.collision_table is None:
         body.collision_table = CollisionTable()
     table = body.collision_table
     if table is None:
         return
-    objects = values["record_obj"][:count]
     times, ethereal = values["record_time"], values["record_ethereal"]
-    kept = set(objects)
-    for object_id in table.ids():  # the records the kernel's steps ended
-        if object_id not in kept:
-            table.remove(object_id)
-    for r, object_id in enumerate(objects):  # known records clobbered in place, new ones appended
+    for object_id in table.oldest_first():
+        table.remove(object_id)
+    for r, object_id in enumerate(values["record_obj"][:count]):
         table.clobber(object_id, CollisionRecord(times[r], bool(ethereal[r])))

@@ -307,8 +307,8 @@ def nobody_near(w, tr, x0, y0, x1, y1):
 
 @njit(cache=True, _nrt=False)
 def _asks(w, tr, j, k):
-    """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j``: shadowed there, not the
-    mover, not held."""
+    """Whether cell ``k``'s ``find_obj_collisions`` would ask body ``j`` (a body's index, never a
+    static object's entry): shadowed there, not the mover, not held."""
     other = bodies_of(w)[j]
     if j == tr.oi_body or other.has_parent:
         return False
@@ -435,8 +435,8 @@ def _ask_bodies_near(w, tr, k):
             return body_find_obj_collisions(w, tr, found)
     shadow_pool = shadow_pool_of(w)
     for i in range(cell.num_shadows):  # in the list's order, as retail asks
-        entry = shadow_pool[cell.shadow_start + i]
-        if _asks(w, tr, entry, k):
+        entry = shadow_pool[cell.shadow_start + i]  # a static object's (< 0) is out of reach: OK
+        if entry >= 0 and _asks(w, tr, entry, k):
             result = body_find_obj_collisions(w, tr, entry)
             if result != OK:
                 return result

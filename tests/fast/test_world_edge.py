@@ -85,6 +85,7 @@ def _edge(engine: str) -> Simulation:
 
 
 def test_bodies_past_the_edge_stay_in_the_kernel(tmp_path: Path) -> None:
+    """Every step of the five bodies in the kernel, the traces the reference's."""
     result = compare_engines(_edge, tmp_path)
     assert result.identical, result.divergence
     assert result.reference_steps == 0, result.reasons
@@ -92,6 +93,7 @@ def test_bodies_past_the_edge_stay_in_the_kernel(tmp_path: Path) -> None:
 
 
 def test_the_landblocks_past_the_edge_are_read_when_reached() -> None:
+    """The landblocks read are the world's terrain-less stand-ins, all 64 cells of each in order."""
     sim = _edge("fast")
     sim.run()
     arrays = sim.physics.world_arrays
@@ -99,6 +101,7 @@ def test_the_landblocks_past_the_edge_are_read_when_reached() -> None:
     # the corner walker's three neighbours, the north runner's and the ball's; the west walker's
     # sweep also re-homes a check position into 0x7F80 and asks for its western neighbour
     assert {0x7F80, 0x7F7F, 0x807F, 0x8081, 0x8180} <= known
+    assert arrays.void_blocks == known - {0x8080}
     for key in known - {0x8080}:
         b = int(arrays.landblock_index[key])
         cells = arrays.land_cells[BLOCK_CELLS * b : BLOCK_CELLS * (b + 1)]

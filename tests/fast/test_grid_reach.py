@@ -71,3 +71,22 @@ def test_squares_side_by_side_share_lines_of_heads() -> None:
     side = 1 << 8
     block = {bucket_of(side * 2 + x, side + y, 8) for x in range(side) for y in range(side)}
     assert len(block) == side * side
+
+
+def test_a_crowd_on_a_larger_hash(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:
+    """The hash's size changes where bodies are filed, not what a search finds: a crowd walking
+    through itself on the hash a quarter of a million bodies would get (1,048,576 buckets) runs
+    as on the reference engine."""
+    from acphys.fast.differential import compare_engines
+    from acphys.fast.kernels import grid
+    from acphys.scenario import parse_scenario
+
+    from .test_kernel_statics import _crowd_by_a_pillar
+
+    wide = grid.heads_for(250_000)
+    monkeypatch.setattr(grid, "heads_for", lambda count: (wide[0].copy(), wide[1]))
+    text = _crowd_by_a_pillar(6)
+    result = compare_engines(lambda engine: parse_scenario(text, "<wide>", engine=engine), tmp_path)
+    assert wide[1] == 10
+    assert result.identical, result.divergence
+    assert result.touching > 50 and result.kernel_steps > 2800, result

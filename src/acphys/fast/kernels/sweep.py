@@ -66,6 +66,7 @@ from acphys.fast.kernels.frame import (
     f32,
     frame_interpolate_rotation,
     frame_is_equal,
+    frame_localtoglobal,
     frame_set_rotate,
     get_block_offset,
     position_get_offset,
@@ -357,26 +358,15 @@ def statics_out_of_reach(w, tr, k):
             kind = shapes[row, 4]
             for t in range(tr.num_sphere):
                 x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
-                if kind == PART_BALL:  # where cache_localspace_sphere puts the sphere
-                    x, y, z = _at_check_frame(tr, t)
+                if kind == PART_BALL:  # where cache_localspace_sphere puts the sphere: local at check_pos
+                    local = (tr.local_sphere[t, 0], tr.local_sphere[t, 1], tr.local_sphere[t, 2])
+                    x, y, z = frame_localtoglobal(t3(tr.check_origin), t9(tr.check_m), local)
                 dx, dy, dz = bx + x - shapes[row, 0], by + y - shapes[row, 1], z - shapes[row, 2]
                 if kind == COLUMN:
                     dz = 0.0
                 if not dx * dx + dy * dy + dz * dz > limit * limit:
                     return False
     return True
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def _at_check_frame(tr, t):
-    """Local sphere ``t``'s centre at ``check_pos``'s frame (in its landblock)."""
-    m, o = tr.check_m, tr.check_origin
-    cx, cy, cz = tr.local_sphere[t, 0], tr.local_sphere[t, 1], tr.local_sphere[t, 2]
-    return (
-        cx * m[0] + cy * m[3] + cz * m[6] + o[0],
-        cx * m[1] + cy * m[4] + cz * m[7] + o[1],
-        cx * m[2] + cy * m[5] + cz * m[8] + o[2],
-    )
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -221,56 +221,74 @@ def _hills(count: int, seconds: float, engine: str = "reference") -> Simulation:
     return build_scenario(document, source="<bench hills>", engine=engine)
 
 
+#: Bodies a landblock of the mixed workload holds (25 of each kind); more bodies take more
+#: landblocks, each with its own house and pillars.
+MIXED_PER_BLOCK = 100
+
+_HOUSE = (
+    "origin = [156.0, 156.0, 50.0]\nrooms = [\n"
+    '    { name = "hall", min = [-6, -4, 0], max = [0, 4, 3] },\n'
+    '    { name = "parlour", min = [0, -4, 0], max = [6, 4, 3] },\n]\n'
+    "doorways = [\n"
+    '    { between = ["hall", "outside"], min = [-6, -0.6, 0], max = [-6, 0.6, 2.2] },\n'
+    '    { between = ["hall", "parlour"], min = [0, -0.6, 0], max = [0, 0.6, 2.2] },\n]\n'
+)
+
+
 def _mixed(count: int, seconds: float, engine: str = "reference") -> Simulation:
-    """A flat landblock of everything at once: walkers and runners, balls thrown about, a crowd
-    walking through itself, pillars, and a house some walkers walk into. What the fast engine
-    does not cover runs on the reference path; its rows report the share."""
-    count = max(8, count)
-    side = max(1, math.ceil(math.sqrt(count // 4)))
+    """Flat landblocks of everything at once: walkers and runners, balls thrown about, a crowd
+    walking through itself, pillars, and a house some walkers walk into; 100 bodies a landblock
+    (the first is 0xA9B4), as many landblocks as the bodies need. What the fast engine does not
+    cover runs on the reference path; its rows report the share."""
+    blocks = max(1, math.ceil(count / MIXED_PER_BLOCK))
+    side = math.ceil(math.sqrt(blocks))
     text = [
         f'[scenario]\nname = "bench-mixed"\nduration = {seconds}\ndriver_hz = 30.0\n',
-        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n',
         "[setup.ball]\nspheres = [{ center = [0, 0, 0.15], radius = 0.15 }]\n",
         "[setup.pillar]\ncylspheres = [{ low_pt = [0, 0, 0], radius = 0.8, height = 4.0 }]\n",
-        '[[building]]\nlandblock = "0xA9B4"\norigin = [156.0, 156.0, 50.0]\nrooms = [\n'
-        '    { name = "hall", min = [-6, -4, 0], max = [0, 4, 3] },\n'
-        '    { name = "parlour", min = [0, -4, 0], max = [6, 4, 3] },\n]\n'
-        "doorways = [\n"
-        '    { between = ["hall", "outside"], min = [-6, -0.6, 0], max = [-6, 0.6, 2.2] },\n'
-        '    { between = ["hall", "parlour"], min = [0, -0.6, 0], max = [0, 0.6, 2.2] },\n]\n',
     ]
-    for n, (x, y) in enumerate(((40.0, 150.0), (100.0, 40.0), (130.0, 110.0))):
-        text.append(f'[[object]]\nname = "pillar-{n}"\nsetup = "pillar"\nlandblock = "0xA9B4"\n')
-        text.append(f"origin = [{x}, {y}, 50.0]\n")
     events = []
-    for i in range(count):
-        n = i // 4
-        name = f"m{i}"
-        body = f'[[body]]\nname = "{name}"\nlandblock = "0xA9B4"\n'
-        walk = f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "WalkForward"\n'
-        if i % 4 == 0:  # walkers and runners
-            x, y = 10.0 + 6.0 * (n % 18), 10.0 + 6.0 * (n // 18 % 18)
-            body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = {(i * 37) % 360}\n"
-            events.append(walk + f"hold_run = {'true' if n % 2 else 'false'}\n")
-        elif i % 4 == 1:  # balls thrown about
-            x, y = 20.0 + 7.0 * (n % 18), 60.0 + 7.0 * (n // 18 % 14)
-            vx, vy = 3.0 * math.sin(i), 3.0 * math.cos(i)
-            body += (
-                f'setup = "ball"\norigin = [{x:.2f}, {y:.2f}, 60.0]\n'
-                f'state = ["gravity", "report_collisions"]\nvelocity = [{vx:.2f}, {vy:.2f}, {4.0 + i % 5}]\n'
-            )
-        elif i % 4 == 2:  # a crowd walking through itself
-            row, column = divmod(n, side)
-            body += (
-                f"origin = [{120.0 + 1.5 * column}, {20.0 + 1.5 * row}, 50.0]\non_ground = true\n"
-                f"heading = {90.0 * (column % 2)}\n"
-            )
-            events.append(walk)
-        else:  # walkers heading for the house
-            x, y = 130.0 + (n % 5) * 2.0, 150.0 + (n // 5 % 5) * 2.5
-            body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = 90.0\n"
-            events.append(walk)
-        text.append(body)
+    for block in range(blocks):
+        bx, by = divmod(block, side)
+        landblock = f"0x{0xA9 + bx:02X}{0xB4 + by:02X}"
+        text.append(f'[[landblock]]\nid = "{landblock}"\nheight = 50.0\n')
+        text.append(f'[[building]]\nlandblock = "{landblock}"\n{_HOUSE}')
+        for n, (x, y) in enumerate(((40.0, 150.0), (100.0, 40.0), (130.0, 110.0))):
+            name = f"pillar-{n}" if block == 0 else f"pillar-{block}-{n}"
+            text.append(f'[[object]]\nname = "{name}"\nsetup = "pillar"\nlandblock = "{landblock}"\n')
+            text.append(f"origin = [{x}, {y}, 50.0]\n")
+        first = block * MIXED_PER_BLOCK
+        here = min(MIXED_PER_BLOCK, count - first)
+        crowd_side = max(1, math.ceil(math.sqrt(here // 4)))
+        for i in range(first, first + here):
+            kind, n = (i - first) % 4, (i - first) // 4
+            name = f"m{i}"
+            body = f'[[body]]\nname = "{name}"\nlandblock = "{landblock}"\n'
+            walk = f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "WalkForward"\n'
+            if kind == 0:  # walkers and runners
+                x, y = 10.0 + 6.0 * (n % 18), 10.0 + 6.0 * (n // 18)
+                body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = {(i * 37) % 360}\n"
+                events.append(walk + f"hold_run = {'true' if n % 2 else 'false'}\n")
+            elif kind == 1:  # balls thrown about
+                x, y = 20.0 + 7.0 * (n % 18), 60.0 + 7.0 * (n // 18)
+                vx, vy = 3.0 * math.sin(i), 3.0 * math.cos(i)
+                body += (
+                    f'setup = "ball"\norigin = [{x:.2f}, {y:.2f}, 60.0]\n'
+                    'state = ["gravity", "report_collisions"]\n'
+                    f"velocity = [{vx:.2f}, {vy:.2f}, {4.0 + i % 5}]\n"
+                )
+            elif kind == 2:  # a crowd walking through itself
+                row, column = divmod(n, crowd_side)
+                body += (
+                    f"origin = [{120.0 + 1.5 * column}, {20.0 + 1.5 * row}, 50.0]\non_ground = true\n"
+                    f"heading = {90.0 * (column % 2)}\n"
+                )
+                events.append(walk)
+            else:  # walkers heading for the house
+                x, y = 130.0 + (n % 5) * 2.0, 150.0 + (n // 5) * 2.5
+                body += f"origin = [{x}, {y}, 50.0]\non_ground = true\nheading = 90.0\n"
+                events.append(walk)
+            text.append(body)
     return parse_scenario("".join(text) + "".join(events), source="<bench mixed>", engine=engine)
 
 
@@ -281,7 +299,7 @@ WORKLOADS: dict[str, tuple[str, Build]] = {
     "fallers": ("balls in flight and landing: Euler integration and the sweep", _fallers),
     "crowd": ("humans walking into each other 1.5 m apart: the object-object checks", _crowd),
     "hills": ("humans walking and running in circles over rolling hills, 8 m apart, 529 a landblock", _hills),
-    "mixed": ("a landblock of walkers, thrown balls, a crowd, pillars and a house", _mixed),
+    "mixed": ("landblocks of walkers, thrown balls, a crowd, pillars and a house, 100 bodies each", _mixed),
 }
 
 

@@ -10,6 +10,7 @@ import pytest
 from acphys.bench import LANDBLOCK_RATE, WORKLOADS, run_suite
 from acphys.cli import main
 from acphys.flags import TransientState
+from acphys.world.env_cell import EnvCell
 from support import walk_tolerance
 
 
@@ -88,6 +89,24 @@ def test_the_crowd_walks_into_itself() -> None:
     # (60 float32 position stores near 85 m: each 0.104-m step rounds the same way there)
     assert max(walked) == pytest.approx(6.24, abs=walk_tolerance(86.0, 60))
     assert sum(distance < 5.7 for distance in walked) >= 4
+
+
+def test_the_mixed_workload_takes_a_landblock_for_each_hundred_bodies() -> None:
+    # 100 bodies a landblock (25 of each kind), each landblock with its house and pillars: 250
+    # bodies stand on three landblocks, nobody where another stands. (One landblock for all of
+    # them stacked the house walkers five deep, and the fifth's drop found no ground.)
+    sim = WORKLOADS["mixed"][1](250, 0.1)
+    assert len(sim.bodies) == 250
+    blocks: dict[int, list[tuple[float, float]]] = {}
+    for body in sim.bodies:
+        if body.name.startswith("m"):
+            origin = body.position.frame.origin
+            blocks.setdefault(body.position.objcell_id >> 16, []).append((origin.x, origin.y))
+    assert sorted(len(spots) for spots in blocks.values()) == [50, 100, 100]
+    assert min(blocks) == 0xA9B4
+    for block, spots in blocks.items():
+        assert len(set(spots)) == len(spots)
+        assert isinstance(sim.world.get_cell(block << 16 | 0x100), EnvCell)  # the house's hall
 
 
 @pytest.mark.kernels

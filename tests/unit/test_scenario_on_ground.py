@@ -59,6 +59,21 @@ def test_a_body_too_far_above_the_ground_is_refused_naming_the_gap() -> None:
         acphys.parse_scenario(FLAT + _body(53.0), source="g.toml")
 
 
+def test_a_body_whose_drop_is_blocked_is_refused_saying_so() -> None:
+    # Humans declared in layers on a 3 x 3 grid of spots 2 m apart (as the old mixed bench stacked
+    # its house walkers): the 59th's drop onto the terrain right under it meets the 6 humans
+    # already standing there and finds no ground. Not "out of reach" (the old message): it is
+    # 0 m above the terrain.
+    text = FLAT
+    for n in range(63):
+        x, y = 130.0 + (n % 3) * 2.0, 150.0 + (n // 3 % 3) * 2.5
+        text += f'[[body]]\nname = "m{n}"\nlandblock = "0xA9B4"\norigin = [{x}, {y}, 50.0]\n'
+        text += "on_ground = true\n"
+    blocked = r"body\[58\]\.origin: on_ground, but its drop onto the terrain 0 m below \(z 50\) finds nothing"
+    with pytest.raises(ScenarioError, match=blocked):
+        acphys.parse_scenario(text, source="g.toml")
+
+
 def test_without_terrain_the_body_stands_on_a_level_floor_at_its_origin() -> None:
     text = '[scenario]\nname = "void"\nduration = 1.0\n' + _body(12.0)
     body = acphys.parse_scenario(text, source="void.toml").body("h")

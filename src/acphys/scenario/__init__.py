@@ -386,8 +386,9 @@ def _put_on_ground(ctx: Ctx, key: str, body: PhysicsObj) -> None:
     ``ON_GROUND_REACH`` committed by ``SetPositionInternal``. Not retail: the scenario's promise
     that the body starts on the ground. (A body under the terrain needs nothing of this: retail's
     placement lifts it onto the terrain.) A body further above the terrain is an error naming the
-    gap; where there is no ground at all (no terrain, nothing below), the body gets a level
-    contact plane at its origin.
+    gap, and so is a drop within reach that ends on no ground (another body in the way); where
+    there is no ground at all (no terrain, nothing below), the body gets a level contact plane at
+    its origin.
     """
     here = body.position
     origin = here.frame.origin
@@ -400,10 +401,17 @@ def _put_on_ground(ctx: Ctx, key: str, body: PhysicsObj) -> None:
         body.set_position_internal(transit)
         return
     if terrain is not None:
+        gap = origin.z - terrain
+        if gap > ON_GROUND_REACH:
+            raise ctx.fail(
+                key,
+                f"on_ground, but {gap:.3g} m above the terrain under it (z {terrain:g}), out of the "
+                f"{ON_GROUND_REACH:g} m on_ground reaches: lower the origin or leave on_ground out",
+            )
         raise ctx.fail(
             key,
-            f"on_ground, but {origin.z - terrain:.3g} m above the terrain under it (z {terrain:g}), "
-            f"out of the {ON_GROUND_REACH:g} m on_ground reaches: lower the origin or leave on_ground out",
+            f"on_ground, but its drop onto the terrain {gap:.3g} m below (z {terrain:g}) finds nothing "
+            "to stand on: something is in its way (another body or an object where it stands?)",
         )
     # Nothing underfoot (no terrain here): a level contact plane at the origin.
     body.transient_state |= TransientState.CONTACT | TransientState.ON_WALKABLE

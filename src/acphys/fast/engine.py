@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from acphys.arrays import BodyArrays, body_arrays
-from acphys.constants import MIN_QUANTUM
+from acphys.constants import MAX_LCOORD, MAX_QUANTUM, MIN_QUANTUM
 from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
@@ -38,7 +38,7 @@ from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.sync import load_body, store_bodies
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
-from acphys.math.cell_id import format_cell_id, landblock_of
+from acphys.math.cell_id import format_cell_id, landblock_of, lcoord_to_gid
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
@@ -50,6 +50,14 @@ from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
 LOG_ROWS = 4096
+#: Metres past a handed-back sweep's reach (the box around its path widened by the body's reach
+#: and the path's length) within which its reference step may still read other bodies' shadows;
+#: see :meth:`FastPhysics._cells_in_reach`.
+SWEEP_MARGIN = 8.0
+#: The most cells a partial write-back writes; a sweep reaching more writes the whole world.
+MAX_REACHED_CELLS = 64
+#: Metres of a land cell's side and of a landblock's.
+_CELL_SIDE, _BLOCK_SIDE = 24.0, 192.0
 
 
 @dataclass
@@ -120,6 +128,12 @@ class FastPhysics(Physics):
         self._writer: Any = None
         #: The kernel's world record and the arrays it was made over (:meth:`_context`).
         self._made_context: tuple[dict[str, np.ndarray], np.ndarray] | None = None
+        #: Where the last update handed back was sweeping (kernels.HB_*).
+        self._handback = np.zeros(kernels.HANDBACK_SLOTS, dtype=np.float64)
+        #: Cells a partial write-back left as they were while writing back bodies shadowed in them:
+        #: kernel cell -> the ``id`` of those bodies, whose shadows there are new objects (each
+        #: such cell is dirty, and is written with them counted as moved).
+        self._pending: dict[int, set[int]] = {}
 
     # -- bodies and arrays -------------------------------------------------------------------
 
@@ -138,6 +152,7 @@ class FastPhysics(Physics):
         self._grid_heads, bits = grid.heads_for(len(self._bodies))
         self._grid[grid.SPAN_BITS] = bits
         self._transition["memo_valid"] = False  # its cell list holds the old arrays' indices
+        self._pending.clear()  # (a whole write-back came first)
         self._reload = True
 
     def _load(self, i: int) -> None:
@@ -291,6 +306,7 @@ class FastPhysics(Physics):
             "counters": self._counters,
             "journal": self._journal,
             "owed": self._owed,
+            "handback": self._handback,
         }
         made = self._made_context
         if made is None or any(held[name] is not array for name, array in made[0].items()):
@@ -325,9 +341,9 @@ class FastPhysics(Physics):
         self.counts.reasons[reason] = self.counts.reasons.get(reason, 0) + 1
 
     def _reference_update(self, i: int) -> None:
-        """Body ``i``'s ``update_object`` on the reference path, its world up to date."""
+        """Body ``i``'s ``update_object`` on the reference path, what it reads up to date."""
         body = self._bodies[i]
-        self.flush()
+        self._write_back_for(i)
         self.world.physics_time = float(self._clock[1])
         partners = self._partners(body)
         if self.world.has_object(body):
@@ -340,6 +356,86 @@ class FastPhysics(Physics):
             transition_from_pool(self._transition, self.world_arrays, self.world)
         self._clock[1] = self.world.physics_time
         self._reload_after(i, partners | self._partners(body))
+
+    def _write_back_for(self, i: int) -> None:
+        """Write back what body ``i``'s reference update can read: for a covered body handed back
+        during its sweep of a single quantum, the cells that sweep can reach
+        (:meth:`_cells_in_reach`), the stale bodies shadowed or standing in them, its collision
+        partners and the player (the others wait for a later write-back); for any other update,
+        the whole world. A covered body's update reads nothing else: it has no manager but the
+        motion interpreter (which acts on the body), its sweep meets only what is shadowed in the
+        cells it reaches, and it reports collisions to the bodies in its collision table."""
+        cells = self._cells_in_reach(i)
+        if cells is None:
+            self.flush()
+            return
+        arrays, records = self.world_arrays, self._records
+        wanted = {i, *self._record_partners(i)}
+        player = self.world.player
+        if player is not None and id(player) in self._index:
+            wanted.add(self._index[id(player)])
+        for k in cells:
+            wanted.update(entry for entry in arrays.shadow_list(k).tolist() if entry >= 0)
+        wanted.update(np.flatnonzero(np.isin(records["cell"], cells)).tolist())
+        stale = np.array(sorted(j for j in wanted if records[j]["stale"]), dtype=np.intp)
+        with _cycle_collector_paused():
+            self._write_back(stale, cells)
+
+    def _cells_in_reach(self, i: int) -> list[int] | None:
+        """The kernel cells body ``i``'s handed-back update can read, or None when that is not
+        known (the update is not a covered body's single quantum handed back during its sweep,
+        or its reach spans more than ``MAX_REACHED_CELLS`` cells).
+
+        Its sweep keeps the spheres within the box around the path's two ends widened by the
+        body's reach and the path's length (the argument of the kernel's ``_lonely_sweep``: steps
+        are bent, never lengthened; rollbacks and slides go back or along; lifts and steps are
+        vertical); ``SWEEP_MARGIN`` more covers what the reference path's shapes add (slides along
+        a wall or a static object's faces, steps up, a building's cells, whose shadows are never
+        a stale body's). Every land cell the kernel knows under that box is in the list."""
+        record, handback = self._records[i], self._handback
+        if not record["covered"] or handback[kernels.HB_SWEPT] != 1.0:
+            return None
+        if self._clock[0] - record["update_time"] > MAX_QUANTUM:
+            return None  # more than one quantum: the earlier ones' paths are not kept
+        ends = []
+        for at in (kernels.HB_BEGIN, kernels.HB_END):
+            cell_id = int(handback[at])
+            x, y = handback[at + 1], handback[at + 2]
+            ends.append(
+                (((cell_id >> 24) & 0xFF) * _BLOCK_SIDE + x, ((cell_id >> 16) & 0xFF) * _BLOCK_SIDE + y)
+            )
+        (bx, by), (ex, ey) = ends
+        widen = float(record["reach"]) + float(np.hypot(ex - bx, ey - by)) + SWEEP_MARGIN
+        if not np.isfinite(widen):
+            return None
+        x0, x1 = (
+            int(np.floor((min(bx, ex) - widen) / _CELL_SIDE)),
+            int(np.floor((max(bx, ex) + widen) / _CELL_SIDE)),
+        )
+        y0, y1 = (
+            int(np.floor((min(by, ey) - widen) / _CELL_SIDE)),
+            int(np.floor((max(by, ey) + widen) / _CELL_SIDE)),
+        )
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_REACHED_CELLS:
+            return None
+        arrays = self.world_arrays
+        cells = []
+        for x in range(max(0, x0), min(MAX_LCOORD - 1, x1) + 1):
+            for y in range(max(0, y0), min(MAX_LCOORD - 1, y1) + 1):
+                k = arrays.cell_index(lcoord_to_gid(x, y))
+                if k >= 0:
+                    cells.append(k)
+        return sorted(cells)
+
+    def _record_partners(self, i: int) -> set[int]:
+        """The engine's bodies in body ``i``'s collision records as the kernel holds them."""
+        record = self._records[i]
+        partners = set()
+        for object_id in record["record_obj"][: record["num_records"]].tolist():
+            other = self.world.get_object(object_id)
+            if other is not None and id(other) in self._index:
+                partners.add(self._index[id(other)])
+        return partners
 
     def _partners(self, body: PhysicsObj) -> set[int]:
         """The engine's bodies in ``body``'s collision table: a step of ``body`` may report to them."""
@@ -359,6 +455,13 @@ class FastPhysics(Physics):
         touched = {int(k) for k in record["shadow_cell"][: record["num_shadow"]] if k >= 0}
         touched |= {arrays.cell_index(s.cell_id) for s in body.shadow_objects if s.cell is not None}
         touched.discard(-1)
+        behind = [k for k in touched if k in self._pending or arrays.cells[k]["dirty"]]
+        stale = [j for j in sorted(partners) if self._records[j]["stale"]]
+        if behind or stale:
+            raise RuntimeError(
+                f"fast engine: the reference step of {body.name or hex(body.id)} reached past what was "
+                f"written back for it (cells {behind}, bodies {stale}): a bug in acphys, please report it"
+            )
         before = {k: arrays.shadow_list(k).tolist() for k in touched}
         known = len(arrays.others)
         for k in touched:
@@ -391,13 +494,15 @@ class FastPhysics(Physics):
             return
         stale = np.flatnonzero(self._records["stale"])
         moves = int(self._counters[kernels.MOVES])
-        if not len(stale) and not moves:
+        if not len(stale) and not moves and not self._arrays.cells["dirty"].any():
             return
         with _cycle_collector_paused():
             self._write_back(stale)
 
-    def _write_back(self, stale: np.ndarray) -> None:
-        """:meth:`flush` for the ``stale`` bodies' rows."""
+    def _write_back(self, stale: np.ndarray, cells: list[int] | None = None) -> None:
+        """Write the ``stale`` bodies' rows back into their objects, and the dirty cells among
+        ``cells`` (None: every dirty cell) into theirs; a written body's new shadows in a cell
+        left dirty are noted in :attr:`_pending` for that cell's write."""
         arrays = self._arrays
         assert arrays is not None
         transition_to_pool(self._transition, arrays, self.world)
@@ -420,10 +525,22 @@ class FastPhysics(Physics):
         self._records["stale"][stale] = False
         self._records["shadows_moved"][stale] = False
         moved = {id(body) for body in bodies}
-        cells = arrays.cells
-        for k in np.flatnonzero(cells["dirty"]).tolist():
-            self._write_cell(k, moved)
-        cells["dirty"] = False
+        dirty = arrays.cells["dirty"]
+        written = np.flatnonzero(dirty).tolist() if cells is None else [k for k in cells if dirty[k]]
+        for k in written:
+            self._write_cell(k, moved | self._pending.pop(k, set()))
+        dirty[written] = False
+        if cells is None:
+            self._pending.clear()
+            return
+        done = set(written)
+        columns = (rows[name].tolist() for name in ("shadows_moved", "num_shadow", "shadow_cell"))
+        for body, shadows_moved, count, shadow_cells in zip(bodies, *columns, strict=True):
+            if shadows_moved:  # its new shadow objects, in cells written later
+                for k in shadow_cells[:count]:
+                    if k >= 0 and k not in done:
+                        self._pending.setdefault(k, set()).add(id(body))
+                        dirty[k] = True
 
     def _replay_moves(self) -> None:
         """Move the bodies that changed cells into their cells' object lists, in the order they

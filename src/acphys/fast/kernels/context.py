@@ -40,6 +40,7 @@ ARRAYS = (
     ("counters", np.int64, 1),  # tick.STEPS, ...
     ("journal", np.int64, 2),  # the undo journal of a body's update
     ("owed", np.int32, 2),  # the deferred log (tick.DEFERRED_*)
+    ("handback", np.float64, 1),  # where a handed-back update was sweeping (tick.HB_*)
 )
 
 
@@ -198,3 +199,8 @@ def journal_of(w):
 @njit(cache=True, inline="always", _nrt=False)
 def owed_of(w):
     return _int32_2d(w.owed, (w.owed_rows, w.owed_cols))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def handback_of(w):
+    return _float64_1d(w.handback, w.handback_rows)

@@ -48,6 +48,7 @@ from acphys.fast.kernels.context import (
     clock_of,
     counters_of,
     grid_of,
+    handback_of,
     heads_of,
     hooks_of,
     journal_of,
@@ -122,6 +123,14 @@ OWED = 6  # rows in the deferred log (DEFERRED_*): what the engine does when the
 TOUCHING = 7  # body-steps the kernel took whose sweep met another body
 UNREAD_CELL = 8
 NUM_COUNTERS = 9
+
+#: ``handback``, where the last update handed back was sweeping (the engine writes back only what
+#: a reference step from there can read): HB_SWEPT is 1.0 when the update began its sweep, and
+#: then the path's two ends follow, each as (cell id, landblock-local x, y, z); else 0.0.
+HB_SWEPT = 0
+HB_BEGIN = 1
+HB_END = 5
+HANDBACK_SLOTS = 9
 
 # Trace log row: body, t, quantum, cell id, origin[3], q[4], velocity[3], cached velocity[3],
 # omega[3], transient, contact normal[3], events.
@@ -930,6 +939,18 @@ def update_object(w, tr, i, tracing):
 
 
 @njit(cache=True, _nrt=False)
+def _note_handback(handback, tr, i):
+    """Keep where body ``i``'s update was sweeping as it is handed back (``HB_*``): the path of
+    the transition, when the transition is this update's."""
+    handback[HB_SWEPT] = 1.0 if tr.oi_body == i else 0.0
+    handback[HB_BEGIN] = tr.begin_cell_id
+    handback[HB_END] = tr.end_cell_id
+    for k in range(3):
+        handback[HB_BEGIN + 1 + k] = tr.begin_origin[k]
+        handback[HB_END + 1 + k] = tr.end_origin[k]
+
+
+@njit(cache=True, _nrt=False)
 def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
@@ -963,10 +984,12 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
         physics_time = clock[1]
         counters[JOURNAL] = 0
         tr.bail = 0
+        tr.oi_body = -1  # until this update's sweep begins (handback)
         status = update_object(w, tr, i, tracing)
         if status != 0:
             counters[REASON] = tr.bail
             counters[UNREAD_CELL] = tr.unread_cell
+            _note_handback(handback_of(w), tr, i)
             _undo(w)
             copy_record(b, saved[0])
             copy_record(tr, saved_tr[0])

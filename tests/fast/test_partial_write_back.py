@@ -1,0 +1,186 @@
+"""A covered body's update handed back mid-sweep writes back only what its reference step can
+read (:meth:`acphys.fast.engine.FastPhysics._write_back_for`): the cells its sweep can reach, the
+stale bodies shadowed or standing there, its collision partners and the player. The rest of the
+world stays in the records until a later write-back, and the run is still the reference's."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from acphys.bench import HILLS_SPACING, _hill_heights
+from acphys.fast.differential import compare_engines
+from acphys.fast.engine import FastPhysics
+from acphys.scenario import build_scenario
+from acphys.simulation import Simulation
+
+pytestmark = pytest.mark.kernels
+
+#: Walkers circling on a 10 x 10 grid 8 m apart over rolling hills (the bench's hills), some
+#: straddling cell edges; a pillar stands where walker 66's circle (about (62, 62), in the
+#: cell from 48 to 72 m each way) keeps meeting it.
+SIDE = 10
+BUMPER = 66
+
+
+def _hills_with_a_pillar(engine: str, seconds: float = 3.0) -> Simulation:
+    bodies, events = [], []
+    for i in range(SIDE * SIDE):
+        row, column = divmod(i, SIDE)
+        name = f"h{i}"
+        bodies.append(
+            {
+                "name": name,
+                "landblock": "0x8080",
+                "origin": [14.0 + HILLS_SPACING * column, 14.0 + HILLS_SPACING * row, 0.0],
+                "heading": float((i * 47) % 360),
+                "on_ground": True,
+            }
+        )
+        events.append(
+            {"at": 0.0, "body": name, "action": "motion", "motion": "WalkForward", "hold_run": i % 2 == 1}
+        )
+        events.append({"at": 0.0, "body": name, "action": "motion", "motion": "TurnRight"})
+    middle = bodies[BUMPER]["origin"]
+    document: dict[str, Any] = {
+        "scenario": {"name": "hills-and-a-pillar", "duration": seconds, "driver_hz": 30.0},
+        "landblock": [{"id": "0x8080", "heights": _hill_heights(0, 0)}],
+        "setup": {"pillar": {"cylspheres": [{"low_pt": [0, 0, 0], "radius": 1.5, "height": 4.0}]}},
+        "object": [
+            {
+                "name": "pillar",
+                "setup": "pillar",
+                "landblock": "0x8080",
+                "origin": [middle[0] - 1.5, middle[1] + 1.0, 0.0],
+            }
+        ],
+        "body": bodies,
+        "event": events,
+    }
+    return build_scenario(document, source="<hills and a pillar>", engine=engine)
+
+
+def _written(monkeypatch: pytest.MonkeyPatch) -> list[tuple[int, bool]]:
+    """Record each write-back: how many bodies it wrote, and whether it was the whole world's."""
+    calls: list[tuple[int, bool]] = []
+    write_back = FastPhysics._write_back
+
+    def recording(self: FastPhysics, stale: np.ndarray, cells: list[int] | None = None) -> None:
+        calls.append((len(stale), cells is None))
+        write_back(self, stale, cells)
+
+    monkeypatch.setattr(FastPhysics, "_write_back", recording)
+    return calls
+
+
+def _clean_cells_are_current(sim: Simulation) -> None:
+    """Every cell neither dirty nor pending lists in its object the kernel's shadows, each the very
+    shadow object of a body whose object is written (the invariant a partial write-back keeps)."""
+    physics = sim.physics
+    assert isinstance(physics, FastPhysics)
+    arrays, records = physics.world_arrays, physics._records
+    index = physics._index
+    for k, cell in enumerate(arrays.land_cells):
+        if arrays.cells[k]["dirty"] or k in physics._pending:
+            continue
+        entries = arrays.shadow_list(k).tolist()
+        listed = [index.get(id(shadow.physobj), None) for shadow in cell.shadow_objects]
+        assert [e for e in entries if e >= 0] == [j for j in listed if j is not None], hex(cell.id)
+        for shadow in cell.shadow_objects:
+            j = index.get(id(shadow.physobj))
+            if j is not None and not records[j]["stale"]:
+                assert any(own is shadow for own in shadow.physobj.shadow_objects), (hex(cell.id), j)
+
+
+def test_a_body_bumping_a_pillar_runs_as_on_the_reference(tmp_path: Path) -> None:
+    comparison = compare_engines(_hills_with_a_pillar, tmp_path)
+    assert comparison.identical, comparison.divergence
+    assert comparison.reasons.get("a static object within reach", 0) >= 10
+    assert comparison.reference_steps >= 10
+
+
+def test_only_what_the_reference_step_reads_is_written_back(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each reference update of the pillar's walker writes the bodies around it (those shadowed in
+    the cells within 8 m of its reach: its own cell and at times the next), never the world's 100;
+    after it, mid-run, every cell the write-backs left clean is current, and some cells wait
+    (pending) for a later write-back."""
+    calls = _written(monkeypatch)
+    pending: list[int] = []
+    reference_update = FastPhysics._reference_update
+
+    def checked(self: FastPhysics, i: int) -> None:
+        reference_update(self, i)
+        _clean_cells_are_current(sim)
+        pending.append(len(self._pending))
+
+    monkeypatch.setattr(FastPhysics, "_reference_update", checked)
+    sim = _hills_with_a_pillar("fast")
+    sim.run()
+    partial = [count for count, whole in calls if not whole]
+    assert len(partial) >= 10 and len(pending) == len(partial)
+    assert max(partial) <= 40
+    assert max(pending) > 0
+
+
+def _shadows_are_consistent(sim: Simulation) -> None:
+    """Every cell's shadows point at it and their slots, each is its body's own object, and every
+    body's shadows stand in their cells' lists."""
+    physics = sim.physics
+    assert isinstance(physics, FastPhysics)
+    for cell in physics.world_arrays.land_cells:
+        for index, shadow in enumerate(cell.shadow_objects):
+            assert shadow.cell is cell and shadow.index == index
+            assert any(own is shadow for own in shadow.physobj.shadow_objects), (hex(cell.id), shadow)
+    for body in sim.bodies:
+        for shadow in body.shadow_objects:
+            assert shadow.cell is not None and shadow.cell.shadow_objects[shadow.index] is shadow
+
+
+def test_the_world_written_back_after_each_tick_is_the_references() -> None:
+    """A public step ends with a whole write-back: the cells a partial one left wait no longer, and
+    the bodies it wrote earlier in the tick are written into them with their new shadow objects
+    (not the old ones in the same slots). Every cell then lists the reference's bodies in its
+    order."""
+    fast, reference = _hills_with_a_pillar("fast"), _hills_with_a_pillar("reference")
+    physics = fast.physics
+    assert isinstance(physics, FastPhysics)
+    left_behind = 0
+    write_back = physics._write_back
+
+    def counting(stale: np.ndarray, cells: list[int] | None = None) -> None:
+        nonlocal left_behind
+        if cells is None:
+            left_behind += len(physics._pending)
+        write_back(stale, cells)
+
+    physics._write_back = counting  # type: ignore[method-assign]
+    while fast.world.cur_time < 3.0:
+        fast.step()
+        reference.step()
+        assert not physics._pending and not physics.world_arrays.cells["dirty"].any()
+        _shadows_are_consistent(fast)
+        for mine, theirs in zip(physics.world_arrays.land_cells, _land_cells(reference), strict=True):
+            assert [s.physobj.name for s in mine.shadow_objects] == [
+                s.physobj.name for s in theirs.shadow_objects
+            ]
+    assert left_behind > 0  # whole write-backs found cells waiting
+
+
+def _land_cells(sim: Simulation) -> list[Any]:
+    block = sim.world.landscape.get_landblock(0x8080 << 16)
+    assert block is not None
+    return list(block.lcell)
+
+
+def test_a_step_reaching_past_what_was_written_is_an_error_not_a_silent_divergence(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Were the reach wrong (here: no cell at all), the reference step would touch cells still
+    behind: the engine says so instead of reading them back into the kernel."""
+    monkeypatch.setattr(FastPhysics, "_cells_in_reach", lambda self, i: [])
+    sim = _hills_with_a_pillar("fast")
+    with pytest.raises(RuntimeError, match=r"the reference step of h66 reached past what was written back"):
+        sim.run()

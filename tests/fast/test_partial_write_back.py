@@ -14,7 +14,7 @@ import pytest
 from acphys.bench import HILLS_SPACING, _hill_heights
 from acphys.fast.differential import compare_engines
 from acphys.fast.engine import FastPhysics
-from acphys.scenario import build_scenario
+from acphys.scenario import build_scenario, parse_scenario
 from acphys.simulation import Simulation
 
 pytestmark = pytest.mark.kernels
@@ -184,3 +184,44 @@ def test_a_step_reaching_past_what_was_written_is_an_error_not_a_silent_divergen
     sim = _hills_with_a_pillar("fast")
     with pytest.raises(RuntimeError, match=r"the reference step of h66 reached past what was written back"):
         sim.run()
+
+
+def _walkers_and_a_drifter(engine: str, seconds: float = 3.0) -> Simulation:
+    """100 walkers circling on flat ground 8 m apart and, among them, a body of three spheres (the
+    kernel does not cover it) gliding at 2 m/s across their circles at their height, with no
+    gravity: its update runs on the reference path every tick, and bumps walkers."""
+    text = [
+        f'[scenario]\nname = "drifter"\nduration = {seconds}\ndriver_hz = 30.0\n',
+        '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n',
+        "[setup.tri]\nspheres = [{ center = [0, 0, 0.3], radius = 0.3 },"
+        " { center = [0, 0, 0.9], radius = 0.3 }, { center = [0, 0, 1.5], radius = 0.3 }]\n",
+        '[[body]]\nname = "drifter"\nsetup = "tri"\nlandblock = "0xA9B4"\norigin = [20.0, 61.0, 50.1]\n'
+        'state = ["report_collisions"]\nvelocity = [2.0, 0.0, 0.0]\n',
+    ]
+    events = []
+    for i in range(100):
+        row, column = divmod(i, 10)
+        name = f"w{i}"
+        x, y = 14.0 + 8.0 * column, 14.0 + 8.0 * row
+        text.append(
+            f'[[body]]\nname = "{name}"\nlandblock = "0xA9B4"\norigin = [{x}, {y}, 50.0]\n'
+            f"on_ground = true\nheading = {(i * 47) % 360}\n"
+        )
+        events.append(f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "WalkForward"\n')
+        events.append(f'[[event]]\nat = 0.0\nbody = "{name}"\naction = "motion"\nmotion = "TurnRight"\n')
+    return parse_scenario("".join(text + events), source="<drifter>", engine=engine)
+
+
+def test_an_uncovered_body_among_walkers_runs_as_on_the_reference(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The drifter's update reads other bodies only through its sweep: each write-back before it
+    writes the bodies around it, not the 100 walkers; it bumps some of them (collision partners
+    the kernel hands back), and every step is the reference's."""
+    calls = _written(monkeypatch)
+    comparison = compare_engines(_walkers_and_a_drifter, tmp_path)
+    assert comparison.identical, comparison.divergence
+    assert comparison.reasons.get("shape: not one or two spheres", 0) >= 85  # the drifter, every tick
+    assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers it met
+    partial = [count for count, whole in calls if not whole]
+    assert len(partial) >= 85 and max(partial) <= 40

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from acphys.arrays import BodyArrays, body_arrays
-from acphys.constants import MAX_LCOORD, MAX_QUANTUM, MIN_QUANTUM
+from acphys.constants import MAX_QUANTUM, MIN_QUANTUM
 from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
@@ -35,10 +35,11 @@ from acphys.fast.kernels.cells import BAIL_REASONS
 from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
+from acphys.fast.reach import cells_under, global_xy, sweep_box, update_box
 from acphys.fast.sync import load_body, store_bodies
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
-from acphys.math.cell_id import format_cell_id, landblock_of, lcoord_to_gid
+from acphys.math.cell_id import format_cell_id, landblock_of
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
@@ -50,14 +51,6 @@ from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
 LOG_ROWS = 4096
-#: Metres past a handed-back sweep's reach (the box around its path widened by the body's reach
-#: and the path's length) within which its reference step may still read other bodies' shadows;
-#: see :meth:`FastPhysics._cells_in_reach`.
-SWEEP_MARGIN = 8.0
-#: The most cells a partial write-back writes; a sweep reaching more writes the whole world.
-MAX_REACHED_CELLS = 64
-#: Metres of a land cell's side and of a landblock's.
-_CELL_SIDE, _BLOCK_SIDE = 24.0, 192.0
 
 
 @dataclass
@@ -358,19 +351,20 @@ class FastPhysics(Physics):
         self._reload_after(i, partners | self._partners(body))
 
     def _write_back_for(self, i: int) -> None:
-        """Write back what body ``i``'s reference update can read: for a covered body handed back
-        during its sweep of a single quantum, the cells that sweep can reach
-        (:meth:`_cells_in_reach`), the stale bodies shadowed or standing in them, its collision
-        partners and the player (the others wait for a later write-back); for any other update,
-        the whole world. A covered body's update reads nothing else: it has no manager but the
-        motion interpreter (which acts on the body), its sweep meets only what is shadowed in the
-        cells it reaches, and it reports collisions to the bodies in its collision table."""
+        """Write back what body ``i``'s reference update can read: when its reach is known
+        (:meth:`_cells_in_reach`), the cells there, the stale bodies shadowed or standing in them,
+        its collision partners and the player (the others wait for a later write-back); else
+        the whole world. Such an update reads nothing else: it has no manager but the motion
+        interpreter (which acts on the body), its sweep meets only what is shadowed in the cells
+        it reaches, and it reports collisions to the bodies in its collision table."""
         cells = self._cells_in_reach(i)
         if cells is None:
             self.flush()
             return
-        arrays, records = self.world_arrays, self._records
-        wanted = {i, *self._record_partners(i)}
+        arrays = self.world_arrays
+        records = self._records
+        partners = self._record_partners(i) if records[i]["covered"] else self._partners(self._bodies[i])
+        wanted = {i, *partners}
         player = self.world.player
         if player is not None and id(player) in self._index:
             wanted.add(self._index[id(player)])
@@ -382,50 +376,25 @@ class FastPhysics(Physics):
             self._write_back(stale, cells)
 
     def _cells_in_reach(self, i: int) -> list[int] | None:
-        """The kernel cells body ``i``'s handed-back update can read, or None when that is not
-        known (the update is not a covered body's single quantum handed back during its sweep,
-        or its reach spans more than ``MAX_REACHED_CELLS`` cells).
-
-        Its sweep keeps the spheres within the box around the path's two ends widened by the
-        body's reach and the path's length (the argument of the kernel's ``_lonely_sweep``: steps
-        are bent, never lengthened; rollbacks and slides go back or along; lifts and steps are
-        vertical); ``SWEEP_MARGIN`` more covers what the reference path's shapes add (slides along
-        a wall or a static object's faces, steps up, a building's cells, whose shadows are never
-        a stale body's). Every land cell the kernel knows under that box is in the list."""
+        """The kernel cells body ``i``'s reference update can read (:mod:`acphys.fast.reach`), or
+        None when that is not known: a covered body handed back during its sweep of one quantum
+        reaches around its path, an uncovered one that reads only through its sweep around where
+        it stands; any other update may read anything."""
         record, handback = self._records[i], self._handback
-        if not record["covered"] or handback[kernels.HB_SWEPT] != 1.0:
-            return None
-        if self._clock[0] - record["update_time"] > MAX_QUANTUM:
-            return None  # more than one quantum: the earlier ones' paths are not kept
-        ends = []
-        for at in (kernels.HB_BEGIN, kernels.HB_END):
-            cell_id = int(handback[at])
-            x, y = handback[at + 1], handback[at + 2]
-            ends.append(
-                (((cell_id >> 24) & 0xFF) * _BLOCK_SIDE + x, ((cell_id >> 16) & 0xFF) * _BLOCK_SIDE + y)
-            )
-        (bx, by), (ex, ey) = ends
-        widen = float(record["reach"]) + float(np.hypot(ex - bx, ey - by)) + SWEEP_MARGIN
-        if not np.isfinite(widen):
-            return None
-        x0, x1 = (
-            int(np.floor((min(bx, ex) - widen) / _CELL_SIDE)),
-            int(np.floor((max(bx, ex) + widen) / _CELL_SIDE)),
-        )
-        y0, y1 = (
-            int(np.floor((min(by, ey) - widen) / _CELL_SIDE)),
-            int(np.floor((max(by, ey) + widen) / _CELL_SIDE)),
-        )
-        if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_REACHED_CELLS:
-            return None
-        arrays = self.world_arrays
-        cells = []
-        for x in range(max(0, x0), min(MAX_LCOORD - 1, x1) + 1):
-            for y in range(max(0, y0), min(MAX_LCOORD - 1, y1) + 1):
-                k = arrays.cell_index(lcoord_to_gid(x, y))
-                if k >= 0:
-                    cells.append(k)
-        return sorted(cells)
+        quantum = self._clock[0] - record["update_time"]
+        if record["covered"]:
+            if handback[kernels.HB_SWEPT] != 1.0 or quantum > MAX_QUANTUM:
+                return None  # (of several quanta, only the last one's path is kept)
+            ends = [
+                global_xy(int(handback[at]), handback[at + 1], handback[at + 2])
+                for at in (kernels.HB_BEGIN, kernels.HB_END)
+            ]
+            box = sweep_box(ends[0], ends[1], float(record["reach"]))
+        else:
+            body = self._bodies[i]
+            observer = self._writer.write_step if self._writer is not None else None
+            box = update_box(body, float(record["reach"]), self.world.cur_time - body.update_time, observer)
+        return cells_under(self.world_arrays, box) if box is not None else None
 
     def _record_partners(self, i: int) -> set[int]:
         """The engine's bodies in body ``i``'s collision records as the kernel holds them."""

@@ -1,0 +1,161 @@
+"""How far a body's update on the reference path can reach, so that the write-back before it
+(:meth:`acphys.fast.engine.FastPhysics._write_back_for`) writes only the land cells whose
+shadow lists it may read and the bodies shadowed there, not the whole world. Not retail: the
+fast engine's bookkeeping.
+
+A body's update reads other bodies through the cells its sweep reaches (their shadow lists),
+through its collision partners, through the player (activity), and through whatever its
+managers and callbacks look at. Two bounds, each a box of landblock-global metres:
+
+* :func:`sweep_box`, a covered body handed back during its sweep: the kernel kept the path's two
+  ends (``tick.HB_*``). The sweep keeps the spheres within the box around them widened by the
+  body's reach and the path's length (steps are bent, never lengthened; rollbacks and slides go
+  back or along; lifts and steps are vertical: the argument of the kernel's ``_lonely_sweep``).
+* :func:`update_box`, an uncovered body whose update reads nothing of other bodies but through
+  its sweep (:func:`reads_only_its_sweep`): its candidate lies within the quantum's velocity,
+  acceleration and root motion (:func:`root_motion_bound`) of where it stands.
+
+Both are widened by :data:`MARGIN` for what the reference path's shapes add (slides along a wall
+or a static object's faces, steps up, a building's cells, whose shadow lists never hold a body
+the kernel stepped).
+"""
+
+from __future__ import annotations
+
+import math
+
+from acphys.constants import GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
+from acphys.fast.world_arrays import WorldArrays
+from acphys.math.cell_id import lcoord_to_gid
+from acphys.motion.animation import F_EPSILON
+from acphys.motion.sequence import Sequence
+from acphys.physics_obj import PhysicsObj
+
+#: Metres past a bound within which the reference step may still read other bodies' shadows.
+MARGIN = 8.0
+#: The most cells a partial write-back writes; an update reaching further writes the whole world.
+MAX_CELLS_REACHED = 64
+#: Metres of a land cell's side and of a landblock's.
+CELL_SIDE = 24.0
+BLOCK_SIDE = 192.0
+
+#: A thousandth more than the sum of the root motion's steps, for its float32 roundings.
+ROUNDING_SLACK = 1.001
+#: A box of landblock-global metres: ``(x0, y0, x1, y1)``.
+Box = tuple[float, float, float, float]
+
+
+def global_xy(cell_id: int, x: float, y: float) -> tuple[float, float]:
+    """Landblock-global metres of the point ``(x, y)`` of cell ``cell_id``'s landblock."""
+    return ((cell_id >> 24) & 0xFF) * BLOCK_SIDE + x, ((cell_id >> 16) & 0xFF) * BLOCK_SIDE + y
+
+
+def _around(x0: float, y0: float, x1: float, y1: float, widen: float) -> Box | None:
+    box = (x0 - widen, y0 - widen, x1 + widen, y1 + widen)
+    return box if all(math.isfinite(value) for value in box) else None
+
+
+def sweep_box(begin: tuple[float, float], end: tuple[float, float], reach: float) -> Box | None:
+    """Where a sweep from ``begin`` to ``end`` (global xy) of a body reaching ``reach`` can read
+    shadow lists (None: not a number)."""
+    (bx, by), (ex, ey) = begin, end
+    widen = reach + math.hypot(ex - bx, ey - by) + MARGIN
+    return _around(min(bx, ex), min(by, ey), max(bx, ex), max(by, ey), widen)
+
+
+def reads_only_its_sweep(body: PhysicsObj, observer: object | None) -> bool:
+    """Whether ``body``'s update reads other bodies only through its sweep, its collision partners
+    and the player: no manager but the motion interpreter (a position manager's interpolation
+    may blip it anywhere, sticky, move-to, target and detection managers read their targets,
+    scripts run hooks), no tween waiting (a scale tween grows its reach), no callback of the
+    user's (``observer`` is the engine's own), neither held nor holding."""
+    if body.parent is not None or (body.children is not None and body.children.objects):
+        return False
+    managers = (
+        body.position_manager,
+        body.detection_manager,
+        body.target_manager,
+        body.particle_manager,
+        body.script_manager,
+    )
+    if any(manager is not None for manager in managers):
+        return False
+    movement = body.movement_manager
+    if movement is not None and movement.moveto_manager is not None:
+        return False
+    if body.weenie_obj is not None or body.on_collision is not None or body.on_step is not None:
+        return False
+    return not body.hooks and (body.observer is None or body.observer == observer)
+
+
+def root_motion_bound(sequence: Sequence, quantum: float) -> float | None:
+    """The longest root motion ``sequence`` can play in ``quantum`` seconds (unscaled), or None
+    for a sequence whose play is not bounded so (a frame range turned over, a number that is not
+    finite).
+
+    ``update_internal`` crosses at most ``quantum · max|framerate| + 1`` frames of its nodes and
+    advances at most ``quantum · max|framerate| + 2`` times (each advance past the first plays a
+    whole node, a frame or more), composing up to two more frames at each advance (leaving one
+    node, entering the next); each frame moves it by at most its animation's longest position
+    frame and ``|velocity| / |framerate|``; a node too slow to advance moves it by the velocity
+    over what is left of the quantum. The float32 stores and turns along the way may lengthen
+    the sum by a few parts in a million: ``ROUNDING_SLACK``.
+    """
+    speed = sequence.velocity.length()
+    nodes = sequence.anim_list
+    if not nodes:
+        return speed * quantum * ROUNDING_SLACK
+    longest, fastest, slowest = 0.0, 0.0, math.inf
+    for node in nodes:
+        if node.low_frame > node.high_frame:
+            return None
+        rate = abs(node.framerate)
+        fastest = max(fastest, rate)
+        if rate > F_EPSILON:
+            slowest = min(slowest, rate)
+        animation = node.animation
+        if animation is not None and animation.pos_frames is not None:
+            for frame in animation.pos_frames:
+                longest = max(longest, frame.origin.length())
+    advances = quantum * fastest + 2.0
+    frames = quantum * fastest + 1.0 + 2.0 * advances
+    per_frame = longest + (speed / slowest if math.isfinite(slowest) else 0.0)
+    bound = (frames * per_frame + speed * quantum) * ROUNDING_SLACK
+    return bound if math.isfinite(bound) else None
+
+
+def update_box(body: PhysicsObj, reach: float, quantum: float, observer: object | None) -> Box | None:
+    """Where the update of a body reaching ``reach`` (from its origin, turned any way) for
+    ``quantum`` seconds (one step: no more than ``MAX_QUANTUM``) can read shadow lists, or None
+    when that is not bounded here (see :func:`reads_only_its_sweep`)."""
+    if not 0.0 <= quantum <= MAX_QUANTUM or not reads_only_its_sweep(body, observer):
+        return None
+    root = 0.0
+    if body.part_array is not None:
+        played = root_motion_bound(body.part_array.sequence, quantum)
+        if played is None:
+            return None
+        root = played * abs(body.scale)
+    speed = min(body.velocity.length(), MAX_VELOCITY)
+    accelerating = body.acceleration.length() + abs(GRAVITY)
+    travel = speed * quantum + accelerating * quantum * quantum + root
+    origin = body.position.frame.origin
+    x, y = global_xy(body.position.objcell_id, origin.x, origin.y)
+    return _around(x, y, x, y, reach + travel + MARGIN)
+
+
+def cells_under(arrays: WorldArrays, box: Box) -> list[int] | None:
+    """The kernel cells under ``box`` (in index order), or None when it spans more than
+    :data:`MAX_CELLS_REACHED` cells."""
+    x0, y0, x1, y1 = box
+    gx0, gx1 = math.floor(x0 / CELL_SIDE), math.floor(x1 / CELL_SIDE)
+    gy0, gy1 = math.floor(y0 / CELL_SIDE), math.floor(y1 / CELL_SIDE)
+    if (gx1 - gx0 + 1) * (gy1 - gy0 + 1) > MAX_CELLS_REACHED:
+        return None
+    cells = []
+    for gx in range(max(0, gx0), min(MAX_LCOORD - 1, gx1) + 1):
+        for gy in range(max(0, gy0), min(MAX_LCOORD - 1, gy1) + 1):
+            k = arrays.cell_index(lcoord_to_gid(gx, gy))
+            if k >= 0:
+                cells.append(k)
+    return sorted(cells)

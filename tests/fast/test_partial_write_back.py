@@ -186,10 +186,11 @@ def test_a_step_reaching_past_what_was_written_is_an_error_not_a_silent_divergen
         sim.run()
 
 
-def _walkers_and_a_drifter(engine: str, seconds: float = 3.0) -> Simulation:
+def _walkers_a_drifter_and_a_remote(engine: str, seconds: float = 3.0) -> Simulation:
     """100 walkers circling on flat ground 8 m apart and, among them, a body of three spheres (the
     kernel does not cover it) gliding at 2 m/s across their circles at their height, with no
-    gravity: its update runs on the reference path every tick, and bumps walkers."""
+    gravity, and a remote human interpolated among them (its position manager keeps it on the
+    reference path): their updates run there every tick, and bump walkers."""
     text = [
         f'[scenario]\nname = "drifter"\nduration = {seconds}\ndriver_hz = 30.0\n',
         '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n',
@@ -198,7 +199,13 @@ def _walkers_and_a_drifter(engine: str, seconds: float = 3.0) -> Simulation:
         '[[body]]\nname = "drifter"\nsetup = "tri"\nlandblock = "0xA9B4"\norigin = [20.0, 61.0, 50.1]\n'
         'state = ["report_collisions"]\nvelocity = [2.0, 0.0, 0.0]\n',
     ]
-    events = []
+    text.append(
+        '[[body]]\nname = "remote"\nlandblock = "0xA9B4"\norigin = [40.0, 40.0, 50.0]\non_ground = true\n'
+    )
+    events = [  # glides among the walkers, then a node beyond the blip distance: a blip
+        f'[[event]]\nat = {at}\nbody = "remote"\naction = "interpolate_to"\norigin = [{x}, {y}, 50.005]\n'
+        for at, x, y in ((0.2, 44.0, 46.0), (0.9, 52.0, 50.0), (1.6, 170.0, 150.0), (2.2, 60.0, 62.0))
+    ]
     for i in range(100):
         row, column = divmod(i, 10)
         name = f"w{i}"
@@ -212,16 +219,18 @@ def _walkers_and_a_drifter(engine: str, seconds: float = 3.0) -> Simulation:
     return parse_scenario("".join(text + events), source="<drifter>", engine=engine)
 
 
-def test_an_uncovered_body_among_walkers_runs_as_on_the_reference(
+def test_uncovered_bodies_among_walkers_run_as_on_the_reference(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The drifter's update reads other bodies only through its sweep: each write-back before it
-    writes the bodies around it, not the 100 walkers; it bumps some of them (collision partners
-    the kernel hands back), and every step is the reference's."""
+    """The drifter's and the remote body's updates read other bodies only through their sweeps
+    (and the remote body's blip): each write-back before one writes the bodies around it (and
+    around its nodes), not the 100 walkers; they bump some walkers (collision partners the kernel
+    hands back), and every step is the reference's."""
     calls = _written(monkeypatch)
-    comparison = compare_engines(_walkers_and_a_drifter, tmp_path)
+    comparison = compare_engines(_walkers_a_drifter_and_a_remote, tmp_path)
     assert comparison.identical, comparison.divergence
     assert comparison.reasons.get("shape: not one or two spheres", 0) >= 85  # the drifter, every tick
-    assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers it met
+    assert comparison.reasons.get("managers", 0) >= 80  # the remote body, from its first node on
+    assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers they met
     partial = [count for count, whole in calls if not whole]
-    assert len(partial) >= 85 and max(partial) <= 40
+    assert len(partial) >= 165 and max(partial) <= 60 and sum(partial) / len(partial) < 20

@@ -18,7 +18,7 @@ from acphys.fast.reach import (
     reads_only_its_sweep,
     root_motion_bound,
     sweep_box,
-    update_box,
+    update_boxes,
 )
 from acphys.fast.world_arrays import build_world_arrays
 from acphys.math.frame import Frame
@@ -100,14 +100,14 @@ def test_only_a_body_reading_through_its_sweep_alone_is_bounded() -> None:
     sim = acphys.parse_scenario(FLAT + HUMAN, source="r.toml")
     body = sim.body("h")
     assert reads_only_its_sweep(body, None)
-    assert update_box(body, 1.0, 1 / 30, None) is not None
-    assert update_box(body, 1.0, 0.25, None) is None  # more than one quantum
+    assert update_boxes(body, 1.0, 1 / 30, None) is not None
+    assert update_boxes(body, 1.0, 0.25, None) is None  # more than one quantum
     body.observer = print
     assert not reads_only_its_sweep(body, None) and reads_only_its_sweep(body, print)
     body.observer = None
-    body.make_position_manager()  # interpolation may blip it anywhere
+    body.stick_to_object(body.id)  # a sticky manager reads its target
     assert not reads_only_its_sweep(body, None)
-    assert update_box(body, 1.0, 1 / 30, None) is None
+    assert update_boxes(body, 1.0, 1 / 30, None) is None
 
 
 def test_the_update_box_of_a_standing_human() -> None:
@@ -116,8 +116,9 @@ def test_the_update_box_of_a_standing_human() -> None:
     sim = acphys.parse_scenario(FLAT + HUMAN, source="r.toml")
     body = sim.body("h")
     quantum = 1 / 30
-    box = update_box(body, 1.5, quantum, None)
-    assert box is not None
+    boxes = update_boxes(body, 1.5, quantum, None)
+    assert boxes is not None and len(boxes) == 1
+    box = boxes[0]
     x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
     widen = 1.5 + f32(9.8000002) * quantum * quantum + MARGIN
     assert box == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-6)
@@ -136,8 +137,28 @@ def test_the_cells_under_a_box_are_the_known_ones() -> None:
     arrays = build_world_arrays(sim.world, sim.bodies)
     x0, y0 = 0xA9 * BLOCK_SIDE, 0xB4 * BLOCK_SIDE
     # local (10..30) x (10..30) m: cells 0xA9B40001, 0002, 0009, 000A, kernel cells 0, 1, 8, 9
-    assert cells_under(arrays, (x0 + 10.0, y0 + 10.0, x0 + 30.0, y0 + 30.0)) == [0, 1, 8, 9]
+    assert cells_under(arrays, [(x0 + 10.0, y0 + 10.0, x0 + 30.0, y0 + 30.0)]) == [0, 1, 8, 9]
     # across the landblock's south-west corner: only its own cell is known
-    assert cells_under(arrays, (x0 - 5.0, y0 - 5.0, x0 + 5.0, y0 + 5.0)) == [0]
+    assert cells_under(arrays, [(x0 - 5.0, y0 - 5.0, x0 + 5.0, y0 + 5.0)]) == [0]
     # more than 64 cells: not a partial write-back
-    assert cells_under(arrays, (x0, y0, x0 + 200.0, y0 + 200.0)) is None
+    assert cells_under(arrays, [(x0, y0, x0 + 200.0, y0 + 200.0)]) is None
+
+
+def test_an_interpolating_body_reaches_along_its_glide_and_to_its_last_node() -> None:
+    # Interpolating 3 m east: the glide may take the whole way this step (so the box about the
+    # body widens by 3 m more than at rest), and a blip would place it on the node (a box there).
+    sim = acphys.parse_scenario(FLAT + HUMAN, source="r.toml")
+    body = sim.body("h")
+    node = body.position.copy()
+    node.frame.origin.x += 3.0
+    body.interpolate_to(node, True)
+    assert len(body.position_manager.interpolation_manager.position_queue) == 1
+    quantum = 1 / 30
+    boxes = update_boxes(body, 1.5, quantum, None)
+    assert boxes is not None and len(boxes) == 2
+    x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
+    widen = 1.5 + f32(9.8000002) * quantum * quantum + 3.0 + MARGIN
+    assert boxes[0] == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-5)
+    assert boxes[1] == pytest.approx(
+        (x + 3.0 - 1.5 - MARGIN, y - 1.5 - MARGIN, x + 3.0 + 1.5 + MARGIN, y + 1.5 + MARGIN)
+    )

@@ -35,7 +35,7 @@ from acphys.fast.kernels.cells import BAIL_REASONS
 from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
-from acphys.fast.reach import cells_under, global_xy, sweep_box, update_box
+from acphys.fast.reach import cells_under, global_xy, sweep_box, update_boxes
 from acphys.fast.sync import load_body, store_bodies
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
@@ -390,11 +390,14 @@ class FastPhysics(Physics):
                 for at in (kernels.HB_BEGIN, kernels.HB_END)
             ]
             box = sweep_box(ends[0], ends[1], float(record["reach"]))
+            boxes = [box] if box is not None else None
         else:
             body = self._bodies[i]
             observer = self._writer.write_step if self._writer is not None else None
-            box = update_box(body, float(record["reach"]), self.world.cur_time - body.update_time, observer)
-        return cells_under(self.world_arrays, box) if box is not None else None
+            boxes = update_boxes(
+                body, float(record["reach"]), self.world.cur_time - body.update_time, observer
+            )
+        return cells_under(self.world_arrays, boxes) if boxes is not None else None
 
     def _record_partners(self, i: int) -> set[int]:
         """The engine's bodies in body ``i``'s collision records as the kernel holds them."""

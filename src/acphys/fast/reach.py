@@ -11,9 +11,10 @@ managers and callbacks look at. Two bounds, each a box of landblock-global metre
   ends (``tick.HB_*``). The sweep keeps the spheres within the box around them widened by the
   body's reach and the path's length (steps are bent, never lengthened; rollbacks and slides go
   back or along; lifts and steps are vertical: the argument of the kernel's ``_lonely_sweep``).
-* :func:`update_box`, an uncovered body whose update reads nothing of other bodies but through
+* :func:`update_boxes`, an uncovered body whose update reads nothing of other bodies but through
   its sweep (:func:`reads_only_its_sweep`): its candidate lies within the quantum's velocity,
-  acceleration and root motion (:func:`root_motion_bound`) of where it stands.
+  acceleration and root motion (:func:`root_motion_bound`) or interpolation glide of where it
+  stands, and an interpolation's blip places it at a node it holds.
 
 Both are widened by :data:`MARGIN` for what the reference path's shapes add (slides along a wall
 or a static object's faces, steps up, a building's cells, whose shadow lists never hold a body
@@ -27,6 +28,7 @@ import math
 from acphys.constants import GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
 from acphys.fast.world_arrays import WorldArrays
 from acphys.math.cell_id import lcoord_to_gid
+from acphys.math.position import Position
 from acphys.motion.animation import F_EPSILON
 from acphys.motion.sequence import Sequence
 from acphys.physics_obj import PhysicsObj
@@ -64,21 +66,18 @@ def sweep_box(begin: tuple[float, float], end: tuple[float, float], reach: float
 
 
 def reads_only_its_sweep(body: PhysicsObj, observer: object | None) -> bool:
-    """Whether ``body``'s update reads other bodies only through its sweep, its collision partners
-    and the player: no manager but the motion interpreter (a position manager's interpolation
-    may blip it anywhere, sticky, move-to, target and detection managers read their targets,
-    scripts run hooks), no tween waiting (a scale tween grows its reach), no callback of the
-    user's (``observer`` is the engine's own), neither held nor holding."""
+    """Whether ``body``'s update reads other bodies only through its sweep (and a blip's
+    placement), its collision partners and the player: no manager but the motion interpreter and
+    a position manager's interpolation and constraint (a sticky manager, a move-to, target and
+    detection managers read their targets, scripts run hooks), no tween waiting (a scale tween
+    grows its reach), no callback of the user's (``observer`` is the engine's own), neither held
+    nor holding."""
     if body.parent is not None or (body.children is not None and body.children.objects):
         return False
-    managers = (
-        body.position_manager,
-        body.detection_manager,
-        body.target_manager,
-        body.particle_manager,
-        body.script_manager,
-    )
+    managers = (body.detection_manager, body.target_manager, body.particle_manager, body.script_manager)
     if any(manager is not None for manager in managers):
+        return False
+    if body.position_manager is not None and body.position_manager.sticky_manager is not None:
         return False
     movement = body.movement_manager
     if movement is not None and movement.moveto_manager is not None:
@@ -124,38 +123,60 @@ def root_motion_bound(sequence: Sequence, quantum: float) -> float | None:
     return bound if math.isfinite(bound) else None
 
 
-def update_box(body: PhysicsObj, reach: float, quantum: float, observer: object | None) -> Box | None:
+def _position_xy(position: Position) -> tuple[float, float]:
+    origin = position.frame.origin
+    return global_xy(position.objcell_id, origin.x, origin.y)
+
+
+def update_boxes(body: PhysicsObj, reach: float, quantum: float, observer: object | None) -> list[Box] | None:
     """Where the update of a body reaching ``reach`` (from its origin, turned any way) for
     ``quantum`` seconds (one step: no more than ``MAX_QUANTUM``) can read shadow lists, or None
-    when that is not bounded here (see :func:`reads_only_its_sweep`)."""
+    when that is not bounded here (see :func:`reads_only_its_sweep`).
+
+    Its candidate lies within its velocity (at most ``MAX_VELOCITY``), its acceleration and
+    gravity over the quantum and its root motion of where it stands; an interpolation's glide
+    replaces the root motion by a step no longer than the way to the head node (a constraint
+    only shortens it), and its blip places the body at the last node or ``blipto_position``:
+    a box about each."""
     if not 0.0 <= quantum <= MAX_QUANTUM or not reads_only_its_sweep(body, observer):
         return None
-    root = 0.0
+    travel = min(body.velocity.length(), MAX_VELOCITY) * quantum
+    travel += (body.acceleration.length() + abs(GRAVITY)) * quantum * quantum
     if body.part_array is not None:
         played = root_motion_bound(body.part_array.sequence, quantum)
         if played is None:
             return None
-        root = played * abs(body.scale)
-    speed = min(body.velocity.length(), MAX_VELOCITY)
-    accelerating = body.acceleration.length() + abs(GRAVITY)
-    travel = speed * quantum + accelerating * quantum * quantum + root
-    origin = body.position.frame.origin
-    x, y = global_xy(body.position.objcell_id, origin.x, origin.y)
-    return _around(x, y, x, y, reach + travel + MARGIN)
+        travel += played * abs(body.scale)
+    x, y = _position_xy(body.position)
+    places = []
+    interpolation = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    if interpolation is not None:
+        queue = interpolation.position_queue
+        if queue:
+            hx, hy = _position_xy(queue[0])
+            travel += math.hypot(hx - x, hy - y)
+            places.append(_position_xy(queue[-1]))
+        if interpolation.blipto_position.objcell_id:
+            places.append(_position_xy(interpolation.blipto_position))
+    boxes = [_around(x, y, x, y, reach + travel + MARGIN)]
+    boxes += [_around(px, py, px, py, reach + MARGIN) for px, py in places]
+    return None if any(box is None for box in boxes) else boxes  # type: ignore[misc]
 
 
-def cells_under(arrays: WorldArrays, box: Box) -> list[int] | None:
-    """The kernel cells under ``box`` (in index order), or None when it spans more than
-    :data:`MAX_CELLS_REACHED` cells."""
-    x0, y0, x1, y1 = box
-    gx0, gx1 = math.floor(x0 / CELL_SIDE), math.floor(x1 / CELL_SIDE)
-    gy0, gy1 = math.floor(y0 / CELL_SIDE), math.floor(y1 / CELL_SIDE)
-    if (gx1 - gx0 + 1) * (gy1 - gy0 + 1) > MAX_CELLS_REACHED:
-        return None
-    cells = []
-    for gx in range(max(0, gx0), min(MAX_LCOORD - 1, gx1) + 1):
-        for gy in range(max(0, gy0), min(MAX_LCOORD - 1, gy1) + 1):
-            k = arrays.cell_index(lcoord_to_gid(gx, gy))
-            if k >= 0:
-                cells.append(k)
+def cells_under(arrays: WorldArrays, boxes: list[Box]) -> list[int] | None:
+    """The kernel cells under any of ``boxes`` (in index order), or None when they span more
+    than :data:`MAX_CELLS_REACHED` cells."""
+    cells: set[int] = set()
+    spanned = 0
+    for x0, y0, x1, y1 in boxes:
+        gx0, gx1 = math.floor(x0 / CELL_SIDE), math.floor(x1 / CELL_SIDE)
+        gy0, gy1 = math.floor(y0 / CELL_SIDE), math.floor(y1 / CELL_SIDE)
+        spanned += (gx1 - gx0 + 1) * (gy1 - gy0 + 1)
+        if spanned > MAX_CELLS_REACHED:
+            return None
+        for gx in range(max(0, gx0), min(MAX_LCOORD - 1, gx1) + 1):
+            for gy in range(max(0, gy0), min(MAX_LCOORD - 1, gy1) + 1):
+                k = arrays.cell_index(lcoord_to_gid(gx, gy))
+                if k >= 0:
+                    cells.add(k)
     return sorted(cells)

@@ -189,8 +189,9 @@ def test_a_step_reaching_past_what_was_written_is_an_error_not_a_silent_divergen
 def _walkers_a_drifter_and_a_remote(engine: str, seconds: float = 3.0) -> Simulation:
     """100 walkers circling on flat ground 8 m apart and, among them, a body of three spheres (the
     kernel does not cover it) gliding at 2 m/s across their circles at their height, with no
-    gravity, and a remote human interpolated among them (its position manager keeps it on the
-    reference path): their updates run there every tick, and bump walkers."""
+    gravity, a remote human interpolated among them (its position manager keeps it on the
+    reference path) and one running to a point across them (a move-to manager): their updates
+    run there every tick, and bump walkers."""
     text = [
         f'[scenario]\nname = "drifter"\nduration = {seconds}\ndriver_hz = 30.0\n',
         '[[landblock]]\nid = "0xA9B4"\nheight = 50.0\n',
@@ -201,6 +202,13 @@ def _walkers_a_drifter_and_a_remote(engine: str, seconds: float = 3.0) -> Simula
     ]
     text.append(
         '[[body]]\nname = "remote"\nlandblock = "0xA9B4"\norigin = [40.0, 40.0, 50.0]\non_ground = true\n'
+    )
+    text.append(
+        '[[body]]\nname = "errand"\nlandblock = "0xA9B4"\norigin = [70.0, 20.0, 50.0]\non_ground = true\n'
+    )
+    text.append(  # a move to a point across the walkers' circles
+        '[[event]]\nat = 0.1\nbody = "errand"\naction = "move_to"\norigin = [30.0, 80.0, 50.0]\n'
+        "hold_run = true\n"
     )
     events = [  # glides among the walkers, then a node beyond the blip distance: a blip
         f'[[event]]\nat = {at}\nbody = "remote"\naction = "interpolate_to"\norigin = [{x}, {y}, 50.005]\n'
@@ -222,15 +230,16 @@ def _walkers_a_drifter_and_a_remote(engine: str, seconds: float = 3.0) -> Simula
 def test_uncovered_bodies_among_walkers_run_as_on_the_reference(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The drifter's and the remote body's updates read other bodies only through their sweeps
-    (and the remote body's blip): each write-back before one writes the bodies around it (and
-    around its nodes), not the 100 walkers; they bump some walkers (collision partners the kernel
-    hands back), and every step is the reference's."""
+    """The drifter's, the remote body's and the errand's updates read other bodies only through
+    their sweeps (and the remote body's blip): each write-back before one writes the bodies
+    around it (and around its nodes), not the 100 walkers; they bump some walkers (collision
+    partners the kernel hands back), and every step is the reference's."""
     calls = _written(monkeypatch)
     comparison = compare_engines(_walkers_a_drifter_and_a_remote, tmp_path)
     assert comparison.identical, comparison.divergence
     assert comparison.reasons.get("shape: not one or two spheres", 0) >= 85  # the drifter, every tick
     assert comparison.reasons.get("managers", 0) >= 80  # the remote body, from its first node on
+    assert comparison.reasons.get("a move-to manager", 0) >= 30  # the errand, until it arrives
     assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers they met
     partial = [count for count, whole in calls if not whole]
-    assert len(partial) >= 165 and max(partial) <= 60 and sum(partial) / len(partial) < 20
+    assert len(partial) >= 250 and max(partial) <= 60 and sum(partial) / len(partial) < 20

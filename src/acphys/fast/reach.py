@@ -67,11 +67,12 @@ def sweep_box(begin: tuple[float, float], end: tuple[float, float], reach: float
 
 def reads_only_its_sweep(body: PhysicsObj, observer: object | None) -> bool:
     """Whether ``body``'s update reads other bodies only through its sweep (and a blip's
-    placement), its collision partners and the player: no manager but the motion interpreter and
-    a position manager's interpolation and constraint (a sticky manager, a move-to, target and
-    detection managers read their targets, scripts run hooks), no tween waiting (a scale tween
-    grows its reach), no callback of the user's (``observer`` is the engine's own), neither held
-    nor holding."""
+    placement), its collision partners and the player: no manager but the motion interpreter, a
+    move to a position and a position manager's interpolation and constraint (a sticky manager,
+    a move to an object, target and detection managers read their targets, scripts run hooks),
+    no tween waiting (a scale tween grows its reach), no callback of the user's (``observer`` is
+    the engine's own), neither held nor holding. A move to a position acts through the motion
+    interpreter after the sweep, for the steps after."""
     if body.parent is not None or (body.children is not None and body.children.objects):
         return False
     managers = (body.detection_manager, body.target_manager, body.particle_manager, body.script_manager)
@@ -79,9 +80,9 @@ def reads_only_its_sweep(body: PhysicsObj, observer: object | None) -> bool:
         return False
     if body.position_manager is not None and body.position_manager.sticky_manager is not None:
         return False
-    movement = body.movement_manager
-    if movement is not None and movement.moveto_manager is not None:
-        return False
+    moveto = body.movement_manager.moveto_manager if body.movement_manager is not None else None
+    if moveto is not None and (moveto.top_level_object_id or moveto.sought_object_id):
+        return False  # moving to an object: it reads the object (and aims through a target manager)
     if body.weenie_obj is not None or body.on_collision is not None or body.on_step is not None:
         return False
     return not body.hooks and (body.observer is None or body.observer == observer)

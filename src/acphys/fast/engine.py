@@ -368,10 +368,13 @@ class FastPhysics(Physics):
         player = self.world.player
         if player is not None and id(player) in self._index:
             wanted.add(self._index[id(player)])
-        for k in cells:
-            wanted.update(entry for entry in arrays.shadow_list(k).tolist() if entry >= 0)
-        wanted.update(np.flatnonzero(np.isin(records["cell"], cells)).tolist())
-        stale = np.array(sorted(j for j in wanted if records[j]["stale"]), dtype=np.intp)
+        reached = np.zeros(len(arrays.cells) + 1, dtype=bool)  # the last slot: no cell (-1)
+        reached[cells] = True
+        listed = [arrays.shadow_list(k) for k in cells]
+        wanted.update(np.concatenate(listed).tolist() if listed else ())
+        wanted.update(np.flatnonzero(reached[records["cell"]]).tolist())
+        candidates = np.array(sorted(j for j in wanted if j >= 0), dtype=np.intp)
+        stale = candidates[records["stale"][candidates].astype(bool)]
         with _cycle_collector_paused():
             self._write_back(stale, cells)
 

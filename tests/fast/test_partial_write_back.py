@@ -26,8 +26,11 @@ SIDE = 10
 BUMPER = 66
 
 
-def _hills_with_a_pillar(engine: str, seconds: float = 3.0) -> Simulation:
-    bodies, events = [], []
+def _hills_with_a_pillar(
+    engine: str, seconds: float = 3.0, commands: list[dict[str, Any]] | None = None
+) -> Simulation:
+    bodies: list[dict[str, Any]] = []
+    events: list[dict[str, Any]] = list(commands or [])
     for i in range(SIDE * SIDE):
         row, column = divmod(i, SIDE)
         name = f"h{i}"
@@ -243,3 +246,34 @@ def test_uncovered_bodies_among_walkers_run_as_on_the_reference(
     assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers they met
     partial = [count for count, whole in calls if not whole]
     assert len(partial) >= 250 and max(partial) <= 60 and sum(partial) / len(partial) < 20
+
+
+def _commands() -> list[dict[str, Any]]:
+    """What a server keeps telling its bodies: turn this way and that, jump, go there, glide
+    (interpolation nodes), on four of the walkers, ten times a second."""
+    commands: list[dict[str, Any]] = []
+    for k in range(1, 25):
+        at = 0.5 + 0.1 * k
+        commands.append(
+            {"at": at, "body": "h12", "action": "motion", "motion": "TurnLeft" if k % 2 else "TurnRight"}
+        )
+        commands.append(
+            {"at": at, "body": "h57", "action": "interpolate_to", "origin": [70.0 + 0.3 * k, 54.0, 0.0]}
+        )
+    commands.append({"at": 0.8, "body": "h33", "action": "jump", "extent": 0.6})
+    commands.append({"at": 1.2, "body": "h81", "action": "move_to", "origin": [30.0, 20.0, 0.0]})
+    commands.append({"at": 1.5, "body": "h45", "action": "set_velocity", "velocity": [0.0, 0.0, 4.0]})
+    return commands
+
+
+def test_commands_to_bodies_write_back_those_bodies_alone(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Events that change only their body's own state (OWN_STATE_ACTIONS) write back that body
+    and its cells, and read it again, not the world; every step is still the reference's."""
+    calls = _written(monkeypatch)
+    comparison = compare_engines(lambda engine: _hills_with_a_pillar(engine, commands=_commands()), tmp_path)
+    assert comparison.identical, comparison.divergence
+    whole = [count for count, all_of_it in calls if all_of_it]
+    assert len(whole) == 1  # the run's end (the first events, at 0 s, came before any step)
+    assert sum(1 for _, all_of_it in calls if not all_of_it) >= 51

@@ -51,6 +51,23 @@ from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
 LOG_ROWS = 4096
+#: Event actions that change their own body's state alone, neither moving it nor reading or
+#: changing another body or a cell (a motion, a jump, a move to a position, a velocity, an
+#: interpolation node, a constraint): the engine writes back and reads again that body only.
+OWN_STATE_ACTIONS = frozenset(
+    {
+        "set_velocity",
+        "set_omega",
+        "motion",
+        "stop_motion",
+        "jump",
+        "move_to",
+        "turn_to",
+        "interpolate_to",
+        "constrain_to",
+        "unconstrain",
+    }
+)
 
 
 @dataclass
@@ -361,10 +378,15 @@ class FastPhysics(Physics):
         if cells is None:
             self.flush()
             return
-        arrays = self.world_arrays
         records = self._records
         partners = self._record_partners(i) if records[i]["covered"] else self._partners(self._bodies[i])
-        wanted = {i, *partners}
+        self._write_back_around(cells, {i, *partners})
+
+    def _write_back_around(self, cells: list[int], bodies: set[int]) -> None:
+        """Write back ``bodies`` (those that are stale), the player, and the kernel ``cells`` with
+        the stale bodies shadowed or standing in them."""
+        arrays, records = self.world_arrays, self._records
+        wanted = set(bodies)
         player = self.world.player
         if player is not None and id(player) in self._index:
             wanted.add(self._index[id(player)])
@@ -448,10 +470,7 @@ class FastPhysics(Physics):
             self._transition["memo_valid"] = False
         others = {i} | partners
         for j in sorted(others):
-            self._load(j)
-            reach = float(grid.reaches_now(self._records[j : j + 1])[0])
-            self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
-            grid.grid_place(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]), j)
+            self._read_again(j)
         for k in touched:  # the bodies whose slots the step's removals and additions moved
             was = before[k]
             for slot, j in enumerate(arrays.shadow_list(k).tolist()):
@@ -460,6 +479,13 @@ class FastPhysics(Physics):
                     cells = other["shadow_cell"][: other["num_shadow"]].tolist()
                     if k in cells:
                         other["shadow_slot"][cells.index(k)] = slot
+
+    def _read_again(self, j: int) -> None:
+        """Read body ``j``'s object into its record again, and file it in the grid there."""
+        self._load(j)
+        reach = float(grid.reaches_now(self._records[j : j + 1])[0])
+        self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
+        grid.grid_place(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]), j)
 
     # -- writing back ---------------------------------------------------------------------------
 
@@ -565,10 +591,26 @@ class FastPhysics(Physics):
         )
 
     def apply_events(self, events: list[Any], body_named: Any) -> None:
-        """Apply events to up-to-date objects, then read every body again."""
-        self.flush()
-        super().apply_events(events, body_named)
-        self._reload = True
+        """Apply events to up-to-date objects: one of ``OWN_STATE_ACTIONS`` (read from a scenario
+        or named to ``add_event``) to its body written back alone, with the cells it is shadowed
+        in, and read again after; any other (a function among them) to the whole world written
+        back, every body read again before the next run."""
+        for event in events:
+            body = body_named(event.body)
+            i = self._index.get(id(body))
+            own = event.action in OWN_STATE_ACTIONS and event.source != "add_event"
+            if i is None or not own or self._arrays is None or self._reload:
+                self.flush()
+                event.apply(body)
+                self._reload = True
+                continue
+            record = self._records[i]
+            cells = {int(k) for k in record["shadow_cell"][: record["num_shadow"]] if k >= 0}
+            if record["cell"] >= 0:
+                cells.add(int(record["cell"]))
+            self._write_back_around(sorted(cells), {i})
+            event.apply(body)
+            self._read_again(i)
 
     def _write_cell(self, k: int, moved: set[int]) -> None:
         """Make the reference cell ``k``'s shadow list the kernel's (``moved``: the ``id`` of each

@@ -35,6 +35,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from acphys.math.vector import Vector3
 from acphys.scenario import build_scenario, parse_scenario
 from acphys.simulation import Simulation
 
@@ -181,11 +182,8 @@ def _hill_heights(bx: int, by: int) -> list[int]:
     return heights
 
 
-def _hills(count: int, seconds: float, engine: str = "reference") -> Simulation:
-    """Humans walking and running in circles (a turn held with the walk) over rolling hills, 8 m
-    apart, over as many landblocks as they need (529 a landblock); their circles never meet, so they
-    walk on their own for as long as they run. Built from Python values (``build_scenario``), as a
-    server would make its population."""
+def _hills_document(count: int, seconds: float, name: str) -> dict[str, Any]:
+    """The hills workload's scenario as Python values (see :func:`_hills`)."""
     blocks = max(1, math.ceil(count / HILLS_PER_BLOCK_SIDE**2))
     side = math.ceil(math.sqrt(blocks))
     landblocks = [
@@ -199,26 +197,80 @@ def _hills(count: int, seconds: float, engine: str = "reference") -> Simulation:
         block, slot = divmod(i, HILLS_PER_BLOCK_SIDE**2)
         row, column = divmod(slot, HILLS_PER_BLOCK_SIDE)
         x, y = 6.0 + HILLS_SPACING * column, 6.0 + HILLS_SPACING * row
-        name = f"h{i}"
+        name_i = f"h{i}"
         bodies.append(
             {
-                "name": name,
+                "name": name_i,
                 "landblock": landblocks[block]["id"],
                 "origin": [x, y, 0.0],  # under the hills: placement lifts it onto them
                 "heading": float((i * 47) % 360),
                 "on_ground": True,
             }
         )
-        walk = {"at": 0.0, "body": name, "action": "motion", "motion": "WalkForward", "hold_run": i % 2 == 1}
+        walk = {
+            "at": 0.0,
+            "body": name_i,
+            "action": "motion",
+            "motion": "WalkForward",
+            "hold_run": i % 2 == 1,
+        }
         events.append(walk)
-        events.append({"at": 0.0, "body": name, "action": "motion", "motion": "TurnRight"})
-    document = {
-        "scenario": {"name": "bench-hills", "duration": seconds, "driver_hz": 30.0},
+        events.append({"at": 0.0, "body": name_i, "action": "motion", "motion": "TurnRight"})
+    return {
+        "scenario": {"name": name, "duration": seconds, "driver_hz": 30.0},
         "landblock": landblocks,
         "body": bodies,
         "event": events,
     }
-    return build_scenario(document, source="<bench hills>", engine=engine)
+
+
+def _hills(count: int, seconds: float, engine: str = "reference") -> Simulation:
+    """Humans walking and running in circles (a turn held with the walk) over rolling hills, 8 m
+    apart, over as many landblocks as they need (529 a landblock); their circles never meet, so they
+    walk on their own for as long as they run. Built from Python values (``build_scenario``), as a
+    server would make its population."""
+    return build_scenario(
+        _hills_document(count, seconds, "bench-hills"), source="<bench hills>", engine=engine
+    )
+
+
+#: In the server workload, one body in ``SERVER_EVERY`` is a remote one gliding to interpolation
+#: nodes, and one a walker told to turn left and right by turns, each ``SERVER_RATE`` times a second.
+SERVER_EVERY = 100
+SERVER_RATE = 10.0
+#: The remote bodies' circles: radius (m) and the angle between two nodes (radians).
+SERVER_CIRCLE = 2.0
+SERVER_STEP = 0.15
+
+
+def _server(count: int, seconds: float, engine: str = "reference") -> Simulation:
+    """The hills walkers as a server drives them: one in 100 a remote body gliding round a 2-m
+    circle to interpolation nodes sent ten times a second (its position manager keeps its updates
+    on the reference path), one in 100 told to turn left and right by turns ten times a second
+    (events that change its motion alone)."""
+    document = _hills_document(count, seconds, "bench-server")
+    remote = {f"h{i}" for i in range(count) if i % SERVER_EVERY == SERVER_EVERY // 2}
+    told = [f"h{i}" for i in range(count) if i % SERVER_EVERY == SERVER_EVERY // 4]
+    events = [event for event in document["event"] if event["body"] not in remote]
+    sends = [k / SERVER_RATE for k in range(1, int(seconds * SERVER_RATE) + 1)]
+    for name in told:
+        for k, at in enumerate(sends):
+            events.append(
+                {"at": at, "body": name, "action": "motion", "motion": "TurnLeft" if k % 2 else "TurnRight"}
+            )
+    document["event"] = events
+    sim = build_scenario(document, source="<bench server>", engine=engine)
+    for name in sorted(remote):
+        body = sim.body(name)
+        cell_id, start = body.position.objcell_id, body.position.frame.origin
+        for k, at in enumerate(sends, start=1):
+            angle = k * SERVER_STEP
+            x = start.x + SERVER_CIRCLE * (math.cos(angle) - 1.0)
+            y = start.y + SERVER_CIRCLE * math.sin(angle)
+            ground = sim.world.ground_height(cell_id, Vector3(x, y, 0.0))
+            z = start.z if ground is None else ground + 0.005
+            sim.add_event(at, name, "interpolate_to", origin=[x, y, z])
+    return sim
 
 
 #: Bodies a landblock of the mixed workload holds (25 of each kind); more bodies take more
@@ -300,6 +352,10 @@ WORKLOADS: dict[str, tuple[str, Build]] = {
     "crowd": ("humans walking into each other 1.5 m apart: the object-object checks", _crowd),
     "hills": ("humans walking and running in circles over rolling hills, 8 m apart, 529 a landblock", _hills),
     "mixed": ("landblocks of walkers, thrown balls, a crowd, pillars and a house, 100 bodies each", _mixed),
+    "server": (
+        "hills walkers driven by a server: 1 in 100 interpolated, 1 in 100 told to turn, 10 times a second",
+        _server,
+    ),
 }
 
 

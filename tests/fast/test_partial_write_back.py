@@ -107,7 +107,7 @@ def test_a_body_bumping_a_pillar_runs_as_on_the_reference(tmp_path: Path) -> Non
 
 def test_only_what_the_reference_step_reads_is_written_back(monkeypatch: pytest.MonkeyPatch) -> None:
     """Each reference update of the pillar's walker writes the bodies around it (those shadowed in
-    the cells within 8 m of its reach: its own cell and at times the next), never the world's 100;
+    the cells within 2 m of its reach: its own cell and at times the next), never the world's 100;
     after it, mid-run, every cell the write-backs left clean is current, and some cells wait
     (pending) for a later write-back."""
     calls = _written(monkeypatch)

@@ -11,8 +11,9 @@ import pytest
 import acphys
 from acphys.fast.reach import (
     BLOCK_SIDE,
-    MARGIN,
+    PLACEMENT_MARGIN,
     ROUNDING_SLACK,
+    SWEEP_MARGIN,
     cells_under,
     global_xy,
     reads_only_its_sweep,
@@ -120,13 +121,13 @@ def test_the_update_box_of_a_standing_human() -> None:
     assert boxes is not None and len(boxes) == 1
     box = boxes[0]
     x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
-    widen = 1.5 + f32(9.8000002) * quantum * quantum + MARGIN
+    widen = 1.5 + f32(9.8000002) * quantum * quantum + SWEEP_MARGIN
     assert box == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-6)
 
 
 def test_a_sweep_box_is_its_path_widened_by_reach_length_and_margin() -> None:
     box = sweep_box((100.0, 200.0), (103.0, 204.0), 0.5)
-    widen = 0.5 + 5.0 + MARGIN
+    widen = 0.5 + 5.0 + SWEEP_MARGIN
     assert box == (100.0 - widen, 200.0 - widen, 103.0 + widen, 204.0 + widen)
     assert sweep_box((100.0, 200.0), (math.nan, 204.0), 0.5) is None
     assert global_xy(0xA9B40001, 1.0, 2.0) == (0xA9 * 192.0 + 1.0, 0xB4 * 192.0 + 2.0)
@@ -157,8 +158,7 @@ def test_an_interpolating_body_reaches_along_its_glide_and_to_its_last_node() ->
     boxes = update_boxes(body, 1.5, quantum, None)
     assert boxes is not None and len(boxes) == 2
     x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
-    widen = 1.5 + f32(9.8000002) * quantum * quantum + 3.0 + MARGIN
+    widen = 1.5 + f32(9.8000002) * quantum * quantum + 3.0 + SWEEP_MARGIN
     assert boxes[0] == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-5)
-    assert boxes[1] == pytest.approx(
-        (x + 3.0 - 1.5 - MARGIN, y - 1.5 - MARGIN, x + 3.0 + 1.5 + MARGIN, y + 1.5 + MARGIN)
-    )
+    m = 1.5 + PLACEMENT_MARGIN
+    assert boxes[1] == pytest.approx((x + 3.0 - m, y - m, x + 3.0 + m, y + m))

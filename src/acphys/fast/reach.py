@@ -16,9 +16,10 @@ managers and callbacks look at. Two bounds, each a box of landblock-global metre
   acceleration and root motion (:func:`root_motion_bound`) or interpolation glide of where it
   stands, and an interpolation's blip places it at a node it holds.
 
-Both are widened by :data:`MARGIN` for what the reference path's shapes add (slides along a wall
-or a static object's faces, steps up, a building's cells, whose shadow lists never hold a body
-the kernel stepped).
+A sweep's box is widened by :data:`SWEEP_MARGIN` more (what the reference path's shapes do
+within it: slides along a wall or a static object's faces go along the path, steps up are
+vertical, a building's cells never list a body the kernel stepped); a placement's (a blip) by
+:data:`PLACEMENT_MARGIN`, past the rings ``find_placement_pos`` tries up to 4 m out.
 """
 
 from __future__ import annotations
@@ -33,8 +34,11 @@ from acphys.motion.animation import F_EPSILON
 from acphys.motion.sequence import Sequence
 from acphys.physics_obj import PhysicsObj
 
-#: Metres past a bound within which the reference step may still read other bodies' shadows.
-MARGIN = 8.0
+#: Metres past a sweep's bound within which the reference step may still read other bodies'
+#: shadows (the kernel's own "lonely" bound takes half a metre).
+SWEEP_MARGIN = 2.0
+#: Metres past a placement's target within which it may read them (its rings reach 4 m).
+PLACEMENT_MARGIN = 8.0
 #: The most cells a partial write-back writes; an update reaching further writes the whole world.
 MAX_CELLS_REACHED = 64
 #: Metres of a land cell's side and of a landblock's.
@@ -61,7 +65,7 @@ def sweep_box(begin: tuple[float, float], end: tuple[float, float], reach: float
     """Where a sweep from ``begin`` to ``end`` (global xy) of a body reaching ``reach`` can read
     shadow lists (None: not a number)."""
     (bx, by), (ex, ey) = begin, end
-    widen = reach + math.hypot(ex - bx, ey - by) + MARGIN
+    widen = reach + math.hypot(ex - bx, ey - by) + SWEEP_MARGIN
     return _around(min(bx, ex), min(by, ey), max(bx, ex), max(by, ey), widen)
 
 
@@ -159,8 +163,8 @@ def update_boxes(body: PhysicsObj, reach: float, quantum: float, observer: objec
             places.append(_position_xy(queue[-1]))
         if interpolation.blipto_position.objcell_id:
             places.append(_position_xy(interpolation.blipto_position))
-    boxes = [_around(x, y, x, y, reach + travel + MARGIN)]
-    boxes += [_around(px, py, px, py, reach + MARGIN) for px, py in places]
+    boxes = [_around(x, y, x, y, reach + travel + SWEEP_MARGIN)]
+    boxes += [_around(px, py, px, py, reach + PLACEMENT_MARGIN) for px, py in places]
     return None if any(box is None for box in boxes) else boxes  # type: ignore[misc]
 
 

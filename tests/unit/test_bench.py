@@ -110,6 +110,28 @@ def test_the_mixed_workload_takes_a_landblock_for_each_hundred_bodies() -> None:
 
 
 @pytest.mark.kernels
+def test_the_server_workload_glides_its_remote_bodies_and_turns_its_told_ones() -> None:
+    # h50 of 100 is a remote body: no motion of its own, interpolation nodes round a 2-m circle
+    # ten times a second (its position manager keeps it on the reference path); h25 is told to
+    # turn left and right by turns, so it ends elsewhere than in the plain hills workload.
+    sim, plain = WORKLOADS["server"][1](100, 2.0, "fast"), WORKLOADS["hills"][1](100, 2.0, "fast")
+    remote = sim.body("h50")
+    start = remote.position.frame.origin.copy()
+    sim.run()
+    plain.run()
+    here = remote.position.frame.origin
+    assert (here - start).length() > 1.0
+    assert (
+        abs(((here.x - (start.x - 2.0)) ** 2 + (here.y - start.y) ** 2) ** 0.5 - 2.0) < 0.5
+    )  # on its circle
+    told, untold = sim.body("h25").position.frame.origin, plain.body("h25").position.frame.origin
+    assert (told - untold).length() > 0.5
+    counts = sim.physics.counts
+    assert counts.reasons.get("managers", 0) >= 50  # the remote body, from its first node on
+    assert counts.kernel > 99 * 59
+
+
+@pytest.mark.kernels
 def test_the_command_prints_a_table_and_writes_json(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -51,6 +51,9 @@ from acphys.world.world import World
 
 #: Kernel log rows held before the engine writes them out (a row is one traced body-step).
 LOG_ROWS = 4096
+#: A record's fields that say where the kernel cast its body's shadows (and their slots), and
+#: whether its object is behind (:meth:`FastPhysics._read_again` with ``keep_shadows``).
+_KERNEL_SHADOWS = ("stale", "shadows_moved", "num_shadow", "shadow_cell", "shadow_cell_id", "shadow_slot")
 #: Event actions that change their own body's state alone, neither moving it nor reading or
 #: changing another body or a cell (a motion, a jump, a move to a position, a velocity, an
 #: interpolation node, a constraint): the engine writes back and reads again that body only.
@@ -443,8 +446,9 @@ class FastPhysics(Physics):
 
     def _reload_after(self, i: int, partners: set[int]) -> None:
         """Read back body ``i``, its collision ``partners`` (before and after its step: a step
-        reports collisions and their ends to both bodies), and the shadow lists of the cells its
-        shadows left or entered (with the slots of the bodies listed there)."""
+        reports collisions and their ends to both bodies; their shadows stay as the kernel cast
+        them), and the shadow lists of the cells its shadows left or entered (with the slots of
+        the bodies listed there)."""
         assert self._arrays is not None
         arrays = self._arrays
         record = self._records[i]
@@ -468,21 +472,28 @@ class FastPhysics(Physics):
         if body.detection_manager is not None:  # its detection may have watched or left cells
             arrays.refresh_uncovered()
             self._transition["memo_valid"] = False
-        others = {i} | partners
-        for j in sorted(others):
-            self._read_again(j)
+        self._read_again(i)  # its shadows are its step's, in cells written before it
+        for j in sorted(partners - {i}):  # the step reported to them, and cast none of their shadows
+            self._read_again(j, keep_shadows=True)
         for k in touched:  # the bodies whose slots the step's removals and additions moved
             was = before[k]
             for slot, j in enumerate(arrays.shadow_list(k).tolist()):
-                if j >= 0 and j not in others and (slot >= len(was) or was[slot] != j):
+                if j >= 0 and j != i and (slot >= len(was) or was[slot] != j):
                     other = self._records[j]
                     cells = other["shadow_cell"][: other["num_shadow"]].tolist()
                     if k in cells:
                         other["shadow_slot"][cells.index(k)] = slot
 
-    def _read_again(self, j: int) -> None:
-        """Read body ``j``'s object into its record again, and file it in the grid there."""
+    def _read_again(self, j: int, keep_shadows: bool = False) -> None:
+        """Read body ``j``'s object into its record again, and file it in the grid there. With
+        ``keep_shadows`` the record keeps where the kernel cast the body's shadows (with their
+        slots) and whether its object is behind: the object's own shadows may be new ones that
+        cells left for a later write-back do not list yet."""
+        kept = self._records[[j]][list(_KERNEL_SHADOWS)] if keep_shadows else None
         self._load(j)
+        if kept is not None:
+            for name in _KERNEL_SHADOWS:
+                self._records[j][name] = kept[0][name]
         reach = float(grid.reaches_now(self._records[j : j + 1])[0])
         self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
         grid.grid_place(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]), j)
@@ -510,19 +521,7 @@ class FastPhysics(Physics):
         self._replay_moves()
         bodies = [self._bodies[i] for i in stale.tolist()]
         rows = self._records[stale]
-        store_bodies(rows, bodies)
-        parts = [body.part_array for body in bodies]
-        self._animations.store(rows, [p.sequence if p is not None else None for p in parts])
-        names = ("cell_id", "shadows_moved", "num_shadow", "shadow_cell_id")
-        columns = (rows[name].tolist() for name in names)
-        for body, body_parts, cell_id, shadows_moved, count, ids in zip(bodies, parts, *columns, strict=True):
-            body.position.objcell_id = cell_id
-            if body_parts is not None:
-                body_parts.update_parts(body.position.frame)
-                for part in body_parts.parts:
-                    part.pos.objcell_id = cell_id
-            if shadows_moved:
-                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
+        self._store_rows(rows, bodies)
         self._records["stale"][stale] = False
         self._records["shadows_moved"][stale] = False
         moved = {id(body) for body in bodies}
@@ -542,6 +541,23 @@ class FastPhysics(Physics):
                     if k >= 0 and k not in done:
                         self._pending.setdefault(k, set()).add(id(body))
                         dirty[k] = True
+
+    def _store_rows(self, rows: np.ndarray, bodies: list[PhysicsObj], shadows: bool = True) -> None:
+        """Write record ``rows`` into ``bodies``: their state, sequences, cells and parts' frames,
+        and (``shadows``) new shadow objects where the kernel cast them again."""
+        store_bodies(rows, bodies)
+        parts = [body.part_array for body in bodies]
+        self._animations.store(rows, [p.sequence if p is not None else None for p in parts])
+        names = ("cell_id", "shadows_moved", "num_shadow", "shadow_cell_id")
+        columns = (rows[name].tolist() for name in names)
+        for body, body_parts, cell_id, shadows_moved, count, ids in zip(bodies, parts, *columns, strict=True):
+            body.position.objcell_id = cell_id
+            if body_parts is not None:
+                body_parts.update_parts(body.position.frame)
+                for part in body_parts.parts:
+                    part.pos.objcell_id = cell_id
+            if shadows and shadows_moved:
+                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
 
     def _replay_moves(self) -> None:
         """Move the bodies that changed cells into their cells' object lists, in the order they
@@ -592,9 +608,10 @@ class FastPhysics(Physics):
 
     def apply_events(self, events: list[Any], body_named: Any) -> None:
         """Apply events to up-to-date objects: one of ``OWN_STATE_ACTIONS`` (read from a scenario
-        or named to ``add_event``) to its body written back alone, with the cells it is shadowed
-        in, and read again after; any other (a function among them) to the whole world written
-        back, every body read again before the next run."""
+        or named to ``add_event``) to its body written back alone (but for its shadows, which no
+        such event reads or moves: they stay the kernel's, to be written with their cells) and
+        read again after; any other (a function among them) to the whole world written back,
+        every body read again before the next run."""
         for event in events:
             body = body_named(event.body)
             i = self._index.get(id(body))
@@ -604,13 +621,11 @@ class FastPhysics(Physics):
                 event.apply(body)
                 self._reload = True
                 continue
-            record = self._records[i]
-            cells = {int(k) for k in record["shadow_cell"][: record["num_shadow"]] if k >= 0}
-            if record["cell"] >= 0:
-                cells.add(int(record["cell"]))
-            self._write_back_around(sorted(cells), {i})
+            if self._records[i]["stale"]:  # all but its shadows, which stay the kernel's
+                self._replay_moves()
+                self._store_rows(self._records[[i]], [body], shadows=False)
             event.apply(body)
-            self._read_again(i)
+            self._read_again(i, keep_shadows=True)
 
     def _write_cell(self, k: int, moved: set[int]) -> None:
         """Make the reference cell ``k``'s shadow list the kernel's (``moved``: the ``id`` of each

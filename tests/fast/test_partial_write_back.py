@@ -66,14 +66,17 @@ def _hills_with_a_pillar(
     return build_scenario(document, source="<hills and a pillar>", engine=engine)
 
 
-def _written(monkeypatch: pytest.MonkeyPatch) -> list[tuple[int, bool]]:
-    """Record each write-back: how many bodies it wrote, and whether it was the whole world's."""
-    calls: list[tuple[int, bool]] = []
+def _written(monkeypatch: pytest.MonkeyPatch) -> list[tuple[int, bool, int]]:
+    """Record each write-back: how many bodies it wrote whole, whether it was the whole world's,
+    and how many bodies it wrote the places of only."""
+    calls: list[tuple[int, bool, int]] = []
     write_back = FastPhysics._write_back
 
-    def recording(self: FastPhysics, stale: np.ndarray, cells: list[int] | None = None) -> None:
-        calls.append((len(stale), cells is None))
-        write_back(self, stale, cells)
+    def recording(
+        self: FastPhysics, stale: np.ndarray, cells: list[int] | None = None, places: np.ndarray | None = None
+    ) -> None:
+        calls.append((len(stale), cells is None, 0 if places is None else len(places)))
+        write_back(self, stale, cells, places)
 
     monkeypatch.setattr(FastPhysics, "_write_back", recording)
     return calls
@@ -135,17 +138,20 @@ def test_a_body_bumping_a_pillar_runs_as_on_the_reference(tmp_path: Path) -> Non
 
 def test_only_what_the_reference_step_reads_is_written_back(monkeypatch: pytest.MonkeyPatch) -> None:
     """Each reference update of the pillar's walker writes the bodies around it (those shadowed in
-    the cells within 2 m of its reach: its own cell and at times the next), never the world's 100;
-    after it, mid-run, every cell the write-backs left clean is current, every kernel slot right,
-    and some cells wait (pending) for a later write-back."""
+    the cells within 2 m of its reach: its own cell and at times the next; whole those within its
+    reach, the places only of the others), never the world's 100; after it, mid-run, every cell
+    the write-backs left clean is current, every kernel slot right, and some cells wait (pending)
+    for a later write-back."""
     calls = _written(monkeypatch)
     pending = _checking_each_reference_update(monkeypatch)
     sim = _hills_with_a_pillar("fast")
     sim.run()
-    partial = [count for count, whole in calls if not whole]
+    partial = [count for count, whole, _ in calls if not whole]
     assert len(partial) >= 10 and len(pending) == len(partial)
     assert max(partial) <= 40
     assert max(pending) > 0
+    # the walkers in those cells but out of the sweep's reach: their places only
+    assert sum(placed for _, whole, placed in calls if not whole) > sum(partial)
 
 
 def _shadows_are_consistent(sim: Simulation) -> None:
@@ -173,11 +179,11 @@ def test_the_world_written_back_after_each_tick_is_the_references() -> None:
     left_behind = 0
     write_back = physics._write_back
 
-    def counting(stale: np.ndarray, cells: list[int] | None = None) -> None:
+    def counting(stale: np.ndarray, cells: list[int] | None = None, places: np.ndarray | None = None) -> None:
         nonlocal left_behind
         if cells is None:
             left_behind += len(physics._pending)
-        write_back(stale, cells)
+        write_back(stale, cells, places)
 
     physics._write_back = counting  # type: ignore[method-assign]
     while fast.world.cur_time < 3.0:
@@ -203,7 +209,7 @@ def test_a_step_reaching_past_what_was_written_is_an_error_not_a_silent_divergen
 ) -> None:
     """Were the reach wrong (here: no cell at all), the reference step would touch cells still
     behind: the engine says so instead of reading them back into the kernel."""
-    monkeypatch.setattr(FastPhysics, "_cells_in_reach", lambda self, i: [])
+    monkeypatch.setattr(FastPhysics, "_reach_of_update", lambda self, i: [])
     sim = _hills_with_a_pillar("fast")
     with pytest.raises(RuntimeError, match=r"the reference step of h66 reached past what was written back"):
         sim.run()
@@ -265,7 +271,7 @@ def test_uncovered_bodies_among_walkers_run_as_on_the_reference(
     assert comparison.reasons.get("managers", 0) >= 80  # the remote body, from its first node on
     assert comparison.reasons.get("a move-to manager", 0) >= 30  # the errand, until it arrives
     assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers they met
-    partial = [count for count, whole in calls if not whole]
+    partial = [count for count, whole, _ in calls if not whole]
     assert len(partial) >= 250 and max(partial) <= 60 and sum(partial) / len(partial) < 20
 
 
@@ -306,7 +312,7 @@ def test_commands_to_bodies_write_back_those_bodies_alone(
     monkeypatch.setattr(FastPhysics, "apply_events", checked)
     comparison = compare_engines(lambda engine: _hills_with_a_pillar(engine, commands=_commands()), tmp_path)
     assert comparison.identical, comparison.divergence
-    whole = [count for count, all_of_it in calls if all_of_it]
+    whole = [count for count, all_of_it, _ in calls if all_of_it]
     assert len(whole) == 1  # the run's end (the first events, at 0 s, came before any step)
     # the others are the reference updates' (the pillar's walker, the interpolated and moving
     # bodies): the events wrote back their bodies alone, through no write-back of cells

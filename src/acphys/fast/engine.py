@@ -35,11 +35,12 @@ from acphys.fast.kernels.cells import BAIL_REASONS
 from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
-from acphys.fast.reach import cells_under, global_xy, sweep_box, update_boxes
+from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
 from acphys.fast.sync import load_body, store_bodies
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
+from acphys.math.vector import Vector3
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
@@ -372,22 +373,26 @@ class FastPhysics(Physics):
 
     def _write_back_for(self, i: int) -> None:
         """Write back what body ``i``'s reference update can read: when its reach is known
-        (:meth:`_cells_in_reach`), the cells there, the stale bodies shadowed or standing in them,
-        its collision partners and the player (the others wait for a later write-back); else
-        the whole world. Such an update reads nothing else: it has no manager but the motion
+        (:meth:`_reach_of_update`), the cells there with the stale bodies shadowed or standing in
+        them, its collision partners and the player (the others wait for a later write-back);
+        else the whole world. Such an update reads nothing else: it has no manager but the motion
         interpreter (which acts on the body), its sweep meets only what is shadowed in the cells
         it reaches, and it reports collisions to the bodies in its collision table."""
-        cells = self._cells_in_reach(i)
-        if cells is None:
+        boxes = self._reach_of_update(i)
+        cells = cells_under(self.world_arrays, boxes) if boxes is not None else None
+        if boxes is None or cells is None:
             self.flush()
             return
         records = self._records
         partners = self._record_partners(i) if records[i]["covered"] else self._partners(self._bodies[i])
-        self._write_back_around(cells, {i, *partners})
+        self._write_back_around(cells, boxes, {i, *partners})
 
-    def _write_back_around(self, cells: list[int], bodies: set[int]) -> None:
+    def _write_back_around(self, cells: list[int], boxes: list[Box], bodies: set[int]) -> None:
         """Write back ``bodies`` (those that are stale), the player, and the kernel ``cells`` with
-        the stale bodies shadowed or standing in them."""
+        the stale bodies shadowed or standing in them: whole those within reach of ``boxes``,
+        only their places (:meth:`_store_places`) those out of it, which the update finds out of
+        its reach from where they stand (``out_of_reach``, the shadow files) and reads no more
+        of. Those stay stale, to be written whole later."""
         arrays, records = self.world_arrays, self._records
         wanted = set(bodies)
         player = self.world.player
@@ -396,18 +401,19 @@ class FastPhysics(Physics):
         reached = np.zeros(len(arrays.cells) + 1, dtype=bool)  # the last slot: no cell (-1)
         reached[cells] = True
         listed = [arrays.shadow_list(k) for k in cells]
-        wanted.update(np.concatenate(listed).tolist() if listed else ())
-        wanted.update(np.flatnonzero(reached[records["cell"]]).tolist())
-        candidates = np.array(sorted(j for j in wanted if j >= 0), dtype=np.intp)
+        around = set(np.concatenate(listed).tolist() if listed else ())
+        around.update(np.flatnonzero(reached[records["cell"]]).tolist())
+        candidates = np.array(sorted(j for j in around | wanted if j >= 0), dtype=np.intp)
         stale = candidates[records["stale"][candidates].astype(bool)]
+        near = within_reach(records[stale], boxes) | np.isin(stale, sorted(wanted))
         with _cycle_collector_paused():
-            self._write_back(stale, cells)
+            self._write_back(stale[near], cells, places=stale[~near])
 
-    def _cells_in_reach(self, i: int) -> list[int] | None:
-        """The kernel cells body ``i``'s reference update can read (:mod:`acphys.fast.reach`), or
-        None when that is not known: a covered body handed back during its sweep of one quantum
-        reaches around its path, an uncovered one that reads only through its sweep around where
-        it stands; any other update may read anything."""
+    def _reach_of_update(self, i: int) -> list[Box] | None:
+        """Where body ``i``'s reference update can read (:mod:`acphys.fast.reach`), or None when
+        that is not known: a covered body handed back during its sweep of one quantum reaches
+        around its path, an uncovered one that reads only through its sweep around where it
+        stands; any other update may read anything."""
         record, handback = self._records[i], self._handback
         quantum = self._clock[0] - record["update_time"]
         if record["covered"]:
@@ -418,14 +424,10 @@ class FastPhysics(Physics):
                 for at in (kernels.HB_BEGIN, kernels.HB_END)
             ]
             box = sweep_box(ends[0], ends[1], float(record["reach"]))
-            boxes = [box] if box is not None else None
-        else:
-            body = self._bodies[i]
-            observer = self._writer.write_step if self._writer is not None else None
-            boxes = update_boxes(
-                body, float(record["reach"]), self.world.cur_time - body.update_time, observer
-            )
-        return cells_under(self.world_arrays, boxes) if boxes is not None else None
+            return [box] if box is not None else None
+        body = self._bodies[i]
+        observer = self._writer.write_step if self._writer is not None else None
+        return update_boxes(body, float(record["reach"]), self.world.cur_time - body.update_time, observer)
 
     def _record_partners(self, i: int) -> set[int]:
         """The engine's bodies in body ``i``'s collision records as the kernel holds them."""
@@ -511,19 +513,27 @@ class FastPhysics(Physics):
         with _cycle_collector_paused():
             self._write_back(stale)
 
-    def _write_back(self, stale: np.ndarray, cells: list[int] | None = None) -> None:
-        """Write the ``stale`` bodies' rows back into their objects, and the dirty cells among
-        ``cells`` (None: every dirty cell) into theirs; a written body's new shadows in a cell
-        left dirty are noted in :attr:`_pending` for that cell's write."""
+    def _write_back(
+        self, stale: np.ndarray, cells: list[int] | None = None, places: np.ndarray | None = None
+    ) -> None:
+        """Write the ``stale`` bodies' rows back into their objects, the ``places`` bodies' places
+        only (they stay stale), and the dirty cells among ``cells`` (None: every dirty cell) into
+        theirs; a written body's new shadows in a cell left dirty are noted in :attr:`_pending`
+        for that cell's write."""
         arrays = self._arrays
         assert arrays is not None
+        places = np.zeros(0, dtype=np.intp) if places is None else places
         transition_to_pool(self._transition, arrays, self.world)
         self._replay_moves()
         bodies = [self._bodies[i] for i in stale.tolist()]
-        rows = self._records[stale]
-        self._store_rows(rows, bodies)
+        placed = [self._bodies[i] for i in places.tolist()]
+        rows = self._records[np.concatenate((stale, places))]
+        self._store_rows(rows[: len(stale)], bodies)
+        self._store_places(rows[len(stale) :], placed)
         self._records["stale"][stale] = False
         self._records["shadows_moved"][stale] = False
+        self._records["shadows_moved"][places] = False
+        bodies += placed
         moved = {id(body) for body in bodies}
         dirty = arrays.cells["dirty"]
         written = np.flatnonzero(dirty).tolist() if cells is None else [k for k in cells if dirty[k]]
@@ -557,6 +567,23 @@ class FastPhysics(Physics):
                 for part in body_parts.parts:
                     part.pos.objcell_id = cell_id
             if shadows and shadows_moved:
+                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
+
+    def _store_places(self, rows: np.ndarray, bodies: list[PhysicsObj]) -> None:
+        """Write where record ``rows`` put ``bodies`` (cell, frame, state bits) and new shadow
+        objects where the kernel cast them again: what a sweep out of their reach reads of them."""
+        names = ("cell_id", "state", "origin", "q", "m", "shadows_moved", "num_shadow", "shadow_cell_id")
+        columns = (rows[name].tolist() for name in names)
+        for body, cell_id, state, origin, q, m, shadows_moved, count, ids in zip(
+            bodies, *columns, strict=True
+        ):
+            body._state = state
+            body.position.objcell_id = cell_id
+            frame = body.position.frame
+            frame.origin = Vector3(*origin)
+            frame.qw, frame.qx, frame.qy, frame.qz = q
+            frame.m[:] = m
+            if shadows_moved:
                 body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
 
     def _replay_moves(self) -> None:

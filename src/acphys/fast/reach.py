@@ -26,6 +26,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from acphys.constants import GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
 from acphys.fast.world_arrays import WorldArrays
 from acphys.math.cell_id import lcoord_to_gid
@@ -185,3 +187,17 @@ def cells_under(arrays: WorldArrays, boxes: list[Box]) -> list[int] | None:
                 if k >= 0:
                     cells.add(k)
     return sorted(cells)
+
+
+def within_reach(records: np.ndarray, boxes: list[Box]) -> np.ndarray:
+    """Per body record, whether its spheres (its ``reach`` about its origin, turned any way) may
+    come within any of ``boxes``; a body that cannot is out of the reach of whatever stays in
+    them (``PhysicsObj.out_of_reach``). Not a number is within."""
+    cell_id = records["cell_id"].astype(np.int64)
+    x = ((cell_id >> 24) & 0xFF) * BLOCK_SIDE + records["origin"][:, 0]
+    y = ((cell_id >> 16) & 0xFF) * BLOCK_SIDE + records["origin"][:, 1]
+    reach = records["reach"]
+    near = ~(np.isfinite(x) & np.isfinite(y) & np.isfinite(reach))
+    for x0, y0, x1, y1 in boxes:
+        near |= (x + reach >= x0) & (x - reach <= x1) & (y + reach >= y0) & (y - reach <= y1)
+    return near

@@ -19,7 +19,10 @@ managers and callbacks look at. Two bounds, each a box of landblock-global metre
 A sweep's box is widened by :data:`SWEEP_MARGIN` more (what the reference path's shapes do
 within it: slides along a wall or a static object's faces go along the path, steps up are
 vertical, a building's cells never list a body the kernel stepped); a placement's (a blip) by
-:data:`PLACEMENT_MARGIN`, past the rings ``find_placement_pos`` tries up to 4 m out.
+:data:`PLACEMENT_MARGIN`, past the rings ``find_placement_pos`` tries up to 4 m out. A body
+shadowed in those cells whose own reach misses every box (:func:`within_reach`) is one the
+update finds out of its reach from where it stands (``PhysicsObj.out_of_reach``, the shadow
+files) and reads no more of: only its place need be written.
 """
 
 from __future__ import annotations

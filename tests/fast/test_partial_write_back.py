@@ -1,7 +1,11 @@
-"""A covered body's update handed back mid-sweep writes back only what its reference step can
-read (:meth:`acphys.fast.engine.FastPhysics._write_back_for`): the cells its sweep can reach, the
-stale bodies shadowed or standing there, its collision partners and the player. The rest of the
-world stays in the records until a later write-back, and the run is still the reference's."""
+"""An update on the reference path writes back only what it can read
+(:meth:`acphys.fast.engine.FastPhysics._write_back_for`, :mod:`acphys.fast.reach`): a covered
+body's handed back mid-sweep, or an uncovered body's that reads others only through its sweep,
+the cells its step can reach with the stale bodies shadowed or standing there (whole those
+within its reach, the places of the others), its collision partners and the player; an event
+that changes only its own body writes back that body alone. The rest of the world stays in the
+records until a later write-back, every kernel slot stays right, and the run is still the
+reference's."""
 
 from __future__ import annotations
 

@@ -8,7 +8,8 @@ import numpy as np
 import acphys
 from acphys.body.reports import CollisionRecord, CollisionTable
 from acphys.fast.layout import BODY
-from acphys.fast.sync import load_body, store_bodies
+from acphys.fast.sync import load_body, store_bodies, vector_column
+from acphys.math.vector import Vector3
 from acphys.motion.animation import AnimSequenceNode
 
 
@@ -63,3 +64,26 @@ def test_collision_records_go_over_oldest_first_and_come_back_so() -> None:
     store_bodies(np.array([record]), [body])
     assert body.collision_table.oldest_first() == [0x50000008, 0x50000001, 0x50000004]
     assert body.collision_table.ids() == [0x50000004, 0x50000008, 0x50000001]
+
+
+def test_vector_columns_narrow_as_the_constructor_does() -> None:
+    """``vector_column`` narrows a whole field at once in NumPy; each component is the one
+    ``Vector3(x, y, z)`` stores (ties to even, subnormals, past the float32 range an infinity,
+    signed zeros, NaN)."""
+    rng = np.random.default_rng(3)
+    rows = np.concatenate(
+        (
+            rng.normal(0.0, 100.0, (300, 3)),
+            rng.uniform(-1e-40, 1e-40, (50, 3)),
+            rng.uniform(-1e39, 1e39, (50, 3)),
+            np.array(
+                [[0.5 + 2.0**-25, 1.0 + 2.0**-24, -0.0], [np.nan, np.inf, -np.inf], [3.4e38, 3.5e38, 1e-46]]
+            ),
+        )
+    )
+    mine = vector_column(rows)
+    for vector, row in zip(mine, rows.tolist(), strict=True):
+        want = Vector3(*row)
+        for got, expected in zip(vector, want, strict=True):
+            assert type(got) is float
+            assert got.hex() == expected.hex() or (got != got and expected != expected), (row, got, expected)

@@ -36,11 +36,10 @@ from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
-from acphys.fast.sync import load_body, store_bodies
+from acphys.fast.sync import load_body, store_bodies, vector_column
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
-from acphys.math.vector import Vector3
 from acphys.motion.anim_hooks import ANIM_DONE_HOOK
 from acphys.physics_obj import PhysicsObj
 from acphys.simulation import Physics
@@ -572,15 +571,16 @@ class FastPhysics(Physics):
     def _store_places(self, rows: np.ndarray, bodies: list[PhysicsObj]) -> None:
         """Write where record ``rows`` put ``bodies`` (cell, frame, state bits) and new shadow
         objects where the kernel cast them again: what a sweep out of their reach reads of them."""
-        names = ("cell_id", "state", "origin", "q", "m", "shadows_moved", "num_shadow", "shadow_cell_id")
+        names = ("cell_id", "state", "q", "m", "shadows_moved", "num_shadow", "shadow_cell_id")
         columns = (rows[name].tolist() for name in names)
-        for body, cell_id, state, origin, q, m, shadows_moved, count, ids in zip(
-            bodies, *columns, strict=True
+        origins = vector_column(rows["origin"])
+        for body, origin, cell_id, state, q, m, shadows_moved, count, ids in zip(
+            bodies, origins, *columns, strict=True
         ):
             body._state = state
             body.position.objcell_id = cell_id
             frame = body.position.frame
-            frame.origin = Vector3(*origin)
+            frame.origin = origin
             frame.qw, frame.qx, frame.qy, frame.qz = q
             frame.m[:] = m
             if shadows_moved:

@@ -15,7 +15,7 @@ import numpy as np
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
 from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
-from acphys.math.vector import Vector3
+from acphys.math.vector import Vector3, vectors_of_float32
 from acphys.physics_obj import PhysicsObj
 
 
@@ -121,29 +121,50 @@ _STORED = (
 )
 
 
+#: The ``Vector3`` fields among them.
+_VECTORS = (
+    "player_vector",
+    "origin",
+    "velocity",
+    "acceleration",
+    "omega",
+    "cached_velocity",
+    "contact_n",
+    "sliding_normal",
+)
+
+
+def vector_column(column: np.ndarray) -> list[Vector3]:
+    """The rows of a records' ``(n, 3)`` float field as ``Vector3``s, narrowed to float32 all at
+    once as the constructor narrows each (beyond the float32 range an infinity, as ``f32``)."""
+    with np.errstate(over="ignore"):
+        return vectors_of_float32(column.astype(np.float32).tolist())
+
+
 def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
     """Copy what kernel steps change from ``records`` back into ``bodies``, one record each (not
     their cells, shadows or sequences, which the engine hands back; their parts are placed at the
     frames). Each field is read for all of them at once, as Python values."""
-    columns = {name: records[name].tolist() for name in _STORED}
+    columns = {name: records[name].tolist() for name in _STORED if name not in _VECTORS}
+    columns.update({name: vector_column(records[name]) for name in _VECTORS})
     for j, body in enumerate(bodies):
         values = {name: column[j] for name, column in columns.items()}
         body._state = values["state"]
         body._transient_state = values["transient"]
         body.update_time = values["update_time"]
         body.player_distance = values["player_distance"]
-        body.player_vector = Vector3(*values["player_vector"])
+        body.player_vector = values["player_vector"]
         frame = body.position.frame
-        frame.origin = Vector3(*values["origin"])
+        frame.origin = values["origin"]
         frame.qw, frame.qx, frame.qy, frame.qz = values["q"]
         frame.m[:] = values["m"]
-        body.velocity = Vector3(*values["velocity"])
-        body.acceleration = Vector3(*values["acceleration"])
-        body.omega = Vector3(*values["omega"])
-        body.cached_velocity = Vector3(*values["cached_velocity"])
-        body.contact_plane = Plane(Vector3(*values["contact_n"]), values["contact_d"])
+        body.velocity = values["velocity"]
+        body.acceleration = values["acceleration"]
+        body.omega = values["omega"]
+        body.cached_velocity = values["cached_velocity"]
+        body.contact_plane = Plane(values["contact_n"], values["contact_d"])
         body.contact_plane_cell_id = values["contact_cell_id"]
-        body.sliding_normal = Vector3(*values["sliding_normal"])
+        body.sliding_normal = values["sliding_normal"]
         body.jumped_this_frame = bool(values["jumped_this_frame"])
         if not values["step_events"]:
             body.step_events.clear()  # the kernel's step recorded them

@@ -191,6 +191,19 @@ def float_array(
     return array if dtype is None else array.astype(dtype, copy=False)
 
 
+def vectors_of_float32(rows: Iterable[tuple[float, float, float]]) -> list[Vector3]:
+    """``Vector3(x, y, z)`` of each row whose components are float32 values already (as a
+    float32 array's ``tolist`` gives them), without the constructor's narrowing."""
+    vectors = []
+    for x, y, z in rows:
+        v = _new(Vector3)
+        v.x = x
+        v.y = y
+        v.z = z
+        vectors.append(v)
+    return vectors
+
+
 def zero_vector() -> Vector3:
     """``Vector3()`` without the constructor's narrowing, for hot paths."""
     v = _new(Vector3)

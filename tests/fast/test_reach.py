@@ -9,8 +9,8 @@ import random
 import pytest
 
 import acphys
+from acphys.constants import BLOCK_LENGTH
 from acphys.fast.reach import (
-    BLOCK_SIDE,
     PLACEMENT_MARGIN,
     ROUNDING_SLACK,
     SWEEP_MARGIN,
@@ -120,7 +120,7 @@ def test_the_update_box_of_a_standing_human() -> None:
     boxes = update_boxes(body, 1.5, quantum, None)
     assert boxes is not None and len(boxes) == 1
     box = boxes[0]
-    x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
+    x, y = 0xA9 * BLOCK_LENGTH + 96.0, 0xB4 * BLOCK_LENGTH + 96.0
     widen = 1.5 + f32(9.8000002) * quantum * quantum + SWEEP_MARGIN
     assert box == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-6)
 
@@ -136,7 +136,7 @@ def test_a_sweep_box_is_its_path_widened_by_reach_length_and_margin() -> None:
 def test_the_cells_under_a_box_are_the_known_ones() -> None:
     sim = acphys.parse_scenario(FLAT + HUMAN, source="r.toml")
     arrays = build_world_arrays(sim.world, sim.bodies)
-    x0, y0 = 0xA9 * BLOCK_SIDE, 0xB4 * BLOCK_SIDE
+    x0, y0 = 0xA9 * BLOCK_LENGTH, 0xB4 * BLOCK_LENGTH
     # local (10..30) x (10..30) m: cells 0xA9B40001, 0002, 0009, 000A, kernel cells 0, 1, 8, 9
     assert cells_under(arrays, [(x0 + 10.0, y0 + 10.0, x0 + 30.0, y0 + 30.0)]) == [0, 1, 8, 9]
     # across the landblock's south-west corner: only its own cell is known
@@ -157,7 +157,7 @@ def test_an_interpolating_body_reaches_along_its_glide_and_to_its_last_node() ->
     quantum = 1 / 30
     boxes = update_boxes(body, 1.5, quantum, None)
     assert boxes is not None and len(boxes) == 2
-    x, y = 0xA9 * BLOCK_SIDE + 96.0, 0xB4 * BLOCK_SIDE + 96.0
+    x, y = 0xA9 * BLOCK_LENGTH + 96.0, 0xB4 * BLOCK_LENGTH + 96.0
     widen = 1.5 + f32(9.8000002) * quantum * quantum + 3.0 + SWEEP_MARGIN
     assert boxes[0] == pytest.approx((x - widen, y - widen, x + widen, y + widen), abs=1e-5)
     m = 1.5 + PLACEMENT_MARGIN

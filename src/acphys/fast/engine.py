@@ -356,9 +356,11 @@ class FastPhysics(Physics):
     def _reference_update(self, i: int) -> None:
         """Body ``i``'s ``update_object`` on the reference path, what it reads up to date."""
         body = self._bodies[i]
-        self._write_back_for(i)
+        # its collision partners: the kernel's record holds a covered body's table, its object
+        # an uncovered one's (a record keeps only MAX_RECORDS)
+        partners = self._record_partners(i) if self._records[i]["covered"] else self._partners(body)
+        self._write_back_for(i, partners)
         self.world.physics_time = float(self._clock[1])
-        partners = self._partners(body)
         if self.world.has_object(body):
             steps = _StepCounter(body)
             try:
@@ -370,20 +372,19 @@ class FastPhysics(Physics):
         self._clock[1] = self.world.physics_time
         self._reload_after(i, partners | self._partners(body))
 
-    def _write_back_for(self, i: int) -> None:
+    def _write_back_for(self, i: int, partners: set[int]) -> None:
         """Write back what body ``i``'s reference update can read: when its reach is known
         (:meth:`_reach_of_update`), the cells there with the stale bodies shadowed or standing in
         them, its collision partners and the player (the others wait for a later write-back);
         else the whole world. Such an update reads nothing else: it has no manager but the motion
         interpreter (which acts on the body), its sweep meets only what is shadowed in the cells
-        it reaches, and it reports collisions to the bodies in its collision table."""
+        it reaches, and it reports collisions to the bodies in its collision table
+        (``partners``)."""
         boxes = self._reach_of_update(i)
         cells = cells_under(self.world_arrays, boxes) if boxes is not None else None
         if boxes is None or cells is None:
             self.flush()
             return
-        records = self._records
-        partners = self._record_partners(i) if records[i]["covered"] else self._partners(self._bodies[i])
         self._write_back_around(cells, boxes, {i, *partners})
 
     def _write_back_around(self, cells: list[int], boxes: list[Box], bodies: set[int]) -> None:
@@ -414,9 +415,8 @@ class FastPhysics(Physics):
         around its path, an uncovered one that reads only through its sweep around where it
         stands; any other update may read anything."""
         record, handback = self._records[i], self._handback
-        quantum = self._clock[0] - record["update_time"]
         if record["covered"]:
-            if handback[kernels.HB_SWEPT] != 1.0 or quantum > MAX_QUANTUM:
+            if handback[kernels.HB_SWEPT] != 1.0 or self._clock[0] - record["update_time"] > MAX_QUANTUM:
                 return None  # (of several quanta, only the last one's path is kept)
             ends = [
                 global_xy(int(handback[at]), handback[at + 1], handback[at + 2])
@@ -529,10 +529,14 @@ class FastPhysics(Physics):
         rows = self._records[np.concatenate((stale, places))]
         self._store_rows(rows[: len(stale)], bodies)
         self._store_places(rows[len(stale) :], placed)
+        bodies += placed
+        columns = (rows[name].tolist() for name in ("shadows_moved", "num_shadow", "shadow_cell_id"))
+        for body, shadows_moved, count, ids in zip(bodies, *columns, strict=True):
+            if shadows_moved:  # the kernel cast them again: new shadow objects
+                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
         self._records["stale"][stale] = False
         self._records["shadows_moved"][stale] = False
         self._records["shadows_moved"][places] = False
-        bodies += placed
         moved = {id(body) for body in bodies}
         dirty = arrays.cells["dirty"]
         written = np.flatnonzero(dirty).tolist() if cells is None else [k for k in cells if dirty[k]]
@@ -551,40 +555,31 @@ class FastPhysics(Physics):
                         self._pending.setdefault(k, set()).add(id(body))
                         dirty[k] = True
 
-    def _store_rows(self, rows: np.ndarray, bodies: list[PhysicsObj], shadows: bool = True) -> None:
-        """Write record ``rows`` into ``bodies``: their state, sequences, cells and parts' frames,
-        and (``shadows``) new shadow objects where the kernel cast them again."""
+    def _store_rows(self, rows: np.ndarray, bodies: list[PhysicsObj]) -> None:
+        """Write record ``rows`` into ``bodies``: their state, sequences, cells and parts' frames
+        (not their shadows)."""
         store_bodies(rows, bodies)
         parts = [body.part_array for body in bodies]
         self._animations.store(rows, [p.sequence if p is not None else None for p in parts])
-        names = ("cell_id", "shadows_moved", "num_shadow", "shadow_cell_id")
-        columns = (rows[name].tolist() for name in names)
-        for body, body_parts, cell_id, shadows_moved, count, ids in zip(bodies, parts, *columns, strict=True):
+        for body, body_parts, cell_id in zip(bodies, parts, rows["cell_id"].tolist(), strict=True):
             body.position.objcell_id = cell_id
             if body_parts is not None:
                 body_parts.update_parts(body.position.frame)
                 for part in body_parts.parts:
                     part.pos.objcell_id = cell_id
-            if shadows and shadows_moved:
-                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
 
     def _store_places(self, rows: np.ndarray, bodies: list[PhysicsObj]) -> None:
-        """Write where record ``rows`` put ``bodies`` (cell, frame, state bits) and new shadow
-        objects where the kernel cast them again: what a sweep out of their reach reads of them."""
-        names = ("cell_id", "state", "q", "m", "shadows_moved", "num_shadow", "shadow_cell_id")
-        columns = (rows[name].tolist() for name in names)
+        """Write where record ``rows`` put ``bodies`` (cell, frame, state bits): with their shadow
+        objects, what a sweep out of their reach reads of them."""
+        columns = (rows[name].tolist() for name in ("cell_id", "state", "q", "m"))
         origins = vector_column(rows["origin"])
-        for body, origin, cell_id, state, q, m, shadows_moved, count, ids in zip(
-            bodies, origins, *columns, strict=True
-        ):
+        for body, origin, cell_id, state, q, m in zip(bodies, origins, *columns, strict=True):
             body._state = state
             body.position.objcell_id = cell_id
             frame = body.position.frame
             frame.origin = origin
             frame.qw, frame.qx, frame.qy, frame.qz = q
             frame.m[:] = m
-            if shadows_moved:
-                body.shadow_objects = [ShadowObj(body, shadow_cell_id) for shadow_cell_id in ids[:count]]
 
     def _replay_moves(self) -> None:
         """Move the bodies that changed cells into their cells' object lists, in the order they
@@ -650,7 +645,7 @@ class FastPhysics(Physics):
                 continue
             if self._records[i]["stale"]:  # all but its shadows, which stay the kernel's
                 self._replay_moves()
-                self._store_rows(self._records[[i]], [body], shadows=False)
+                self._store_rows(self._records[[i]], [body])
             event.apply(body)
             self._read_again(i, keep_shadows=True)
 

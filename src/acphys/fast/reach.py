@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from acphys.constants import GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
+from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
 from acphys.fast.world_arrays import WorldArrays
 from acphys.math.cell_id import lcoord_to_gid
 from acphys.math.position import Position
@@ -46,9 +46,6 @@ SWEEP_MARGIN = 2.0
 PLACEMENT_MARGIN = 8.0
 #: The most cells a partial write-back writes; an update reaching further writes the whole world.
 MAX_CELLS_REACHED = 64
-#: Metres of a land cell's side and of a landblock's.
-CELL_SIDE = 24.0
-BLOCK_SIDE = 192.0
 
 #: A thousandth more than the sum of the root motion's steps, for its float32 roundings.
 ROUNDING_SLACK = 1.001
@@ -58,7 +55,7 @@ Box = tuple[float, float, float, float]
 
 def global_xy(cell_id: int, x: float, y: float) -> tuple[float, float]:
     """Landblock-global metres of the point ``(x, y)`` of cell ``cell_id``'s landblock."""
-    return ((cell_id >> 24) & 0xFF) * BLOCK_SIDE + x, ((cell_id >> 16) & 0xFF) * BLOCK_SIDE + y
+    return ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH + x, ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH + y
 
 
 def _around(x0: float, y0: float, x1: float, y1: float, widen: float) -> Box | None:
@@ -179,8 +176,8 @@ def cells_under(arrays: WorldArrays, boxes: list[Box]) -> list[int] | None:
     cells: set[int] = set()
     spanned = 0
     for x0, y0, x1, y1 in boxes:
-        gx0, gx1 = math.floor(x0 / CELL_SIDE), math.floor(x1 / CELL_SIDE)
-        gy0, gy1 = math.floor(y0 / CELL_SIDE), math.floor(y1 / CELL_SIDE)
+        gx0, gx1 = math.floor(x0 / CELL_LENGTH), math.floor(x1 / CELL_LENGTH)
+        gy0, gy1 = math.floor(y0 / CELL_LENGTH), math.floor(y1 / CELL_LENGTH)
         spanned += (gx1 - gx0 + 1) * (gy1 - gy0 + 1)
         if spanned > MAX_CELLS_REACHED:
             return None
@@ -197,8 +194,8 @@ def within_reach(records: np.ndarray, boxes: list[Box]) -> np.ndarray:
     come within any of ``boxes``; a body that cannot is out of the reach of whatever stays in
     them (``PhysicsObj.out_of_reach``). Not a number is within."""
     cell_id = records["cell_id"].astype(np.int64)
-    x = ((cell_id >> 24) & 0xFF) * BLOCK_SIDE + records["origin"][:, 0]
-    y = ((cell_id >> 16) & 0xFF) * BLOCK_SIDE + records["origin"][:, 1]
+    x = ((cell_id >> 24) & 0xFF) * BLOCK_LENGTH + records["origin"][:, 0]
+    y = ((cell_id >> 16) & 0xFF) * BLOCK_LENGTH + records["origin"][:, 1]
     reach = records["reach"]
     near = ~(np.isfinite(x) & np.isfinite(y) & np.isfinite(reach))
     for x0, y0, x1, y1 in boxes:

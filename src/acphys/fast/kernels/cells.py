@@ -14,7 +14,7 @@ import math
 
 from numba import njit
 
-from acphys.constants import CELL_LENGTH, MAX_LCOORD
+from acphys.constants import CELL_LENGTH, EPSILON, MAX_LCOORD
 from acphys.fast.kernels.context import cells_of, landblock_index_of
 from acphys.fast.kernels.frame import adjust_to_outside_lcoord, f32, lcoord_to_gid
 from acphys.fast.layout import MAX_CELLS
@@ -146,12 +146,44 @@ def _footprint_seen(tr, s):
     return False
 
 
+@njit(cache=True, inline="always", _nrt=False)
+def cell_clear_of_edges(cell_id, x, y, radius):
+    """The land cell of ``cell_id``'s landblock whose square holds the circle at block-local
+    ``(x, y)`` clear of its edges as :func:`add_all_outside_cells` measures them (it adds that cell
+    and no neighbour), or 0 when the circle is not so placed (or ``cell_id`` is no land cell of a
+    landblock on the world).
+
+    There ``adjust_to_outside_lcoord`` leaves ``x`` and ``y`` as they are (at least EPSILON, in the
+    landblock) and the in-cell coordinates ``x - 24·column`` are exact (a float32 value less an
+    integer it exceeds), so the test below is the one ``check_add_cell_boundary`` makes. A column
+    the product by 1/24 puts one off fails the test (the in-cell coordinate leaves [0, 24)), and
+    so does a NaN.
+
+    Not retail: a shortcut through ``CLandCell::add_all_outside_cells`` (acclient.c:355345) for a
+    sphere well inside a cell.
+    """
+    low = cell_id & 0xFFFF
+    if not (1 <= low <= 64) or (cell_id >> 24) & 0xFF == 0xFF or (cell_id >> 16) & 0xFF == 0xFF:
+        return 0
+    column = math.floor(x * (1.0 / CELL_LENGTH))
+    row = math.floor(y * (1.0 / CELL_LENGTH))
+    if not (0.0 <= column < 8.0 and 0.0 <= row < 8.0 and x >= EPSILON and y >= EPSILON):
+        return 0
+    in_x = x - column * CELL_LENGTH
+    in_y = y - row * CELL_LENGTH
+    max_rad = f32(CELL_LENGTH - radius)
+    if radius <= in_x <= max_rad and radius <= in_y <= max_rad:
+        return (cell_id & 0xFFFF0000) | (8 * int(column) + int(row) + 1)
+    return 0
+
+
 @njit(cache=True, _nrt=False)
 def add_all_outside_cells(w, tr, cell_id):
     """Once per array: every land cell the global spheres (in ``cell_id``'s landblock) overlap.
 
     A sphere over the same ground point with the same radius as an earlier one is skipped: the
-    cells, their order and the answer are those of the earlier one (z is never read).
+    cells, their order and the answer are those of the earlier one (z is never read). A sphere
+    clear of its cell's edges adds that cell alone (:func:`cell_clear_of_edges`).
 
     Port of :meth:`acphys.world.land_cell.LandCell.add_all_outside_cells` (the kernel always has
     spheres). Retail: CLandCell::add_all_outside_cells @ 0x00533630 (acclient.c:355345)
@@ -163,11 +195,15 @@ def add_all_outside_cells(w, tr, cell_id):
     for s in range(tr.num_sphere):
         if _footprint_seen(tr, s):
             continue
+        radius = tr.global_sphere[s, 3]
+        clear = cell_clear_of_edges(cell_id, tr.global_sphere[s, 0], tr.global_sphere[s, 1], radius)
+        if clear:
+            ok &= cell_array_add(w, tr, clear)
+            continue
         center = (tr.global_sphere[s, 0], tr.global_sphere[s, 1], tr.global_sphere[s, 2])
         on_world, lx, ly, point = adjust_to_outside_lcoord(cell_id, center)
         if not on_world:
             break
-        radius = tr.global_sphere[s, 3]
         in_x = f32(point[0] - math.floor(point[0] / CELL_LENGTH) * CELL_LENGTH)
         in_y = f32(point[1] - math.floor(point[1] / CELL_LENGTH) * CELL_LENGTH)
         max_rad = f32(CELL_LENGTH - radius)

@@ -3,19 +3,20 @@
 A body's record (:data:`acphys.fast.layout.BODY`) holds what a step of a body reads and writes
 while nothing else about the body is going on: no manager at work but the movement manager's
 motion interpreter (which only acts when the body lands, leaves the ground or an animation
-ends: the kernel hands those steps back) and the motion table's manager with no motion to
-complete, no hooks waiting, a sequence the kernel can play (:func:`acphys.fast.kernels.sequence.
-load_sequence`). :func:`uncovered_reason` names the first thing
-that is going on (a manager at work, a hook waiting, a shape the kernel does not sweep, ...);
-such a body runs on the reference path until it is idle again. The kernel itself hands a step
-back when it meets something it does not cover mid-step (see :mod:`acphys.fast.kernels.tick`).
+ends: the kernel hands those steps back), the position manager's interpolation (its queue a row
+of the interpolation table) and the motion table's manager with no motion to complete, no hooks
+waiting, a sequence the kernel can play (:func:`acphys.fast.kernels.sequence.load_sequence`).
+:func:`uncovered_reason` names the first thing that is going on (a manager at work, a hook
+waiting, a shape the kernel does not sweep, ...); such a body runs on the reference path until
+it is idle again. The kernel itself hands a step back when it meets something it does not cover
+mid-step (see :mod:`acphys.fast.kernels.tick`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from acphys.fast.layout import MAX_CELLS, MAX_RECORDS, MAX_SPHERES
+from acphys.fast.layout import MAX_CELLS, MAX_GLIDE_NODES, MAX_RECORDS, MAX_SPHERES
 from acphys.flags import PhysicsState, TransientState
 from acphys.physics_obj import PhysicsObj
 from acphys.world.obj_cell import ObjCell
@@ -23,6 +24,26 @@ from acphys.world.obj_cell import ObjCell
 _SHAPE_STATES = PhysicsState.PARTICLE_EMITTER | PhysicsState.HAS_PHYSICS_BSP
 #: Physics-state bits whose handling the kernel leaves to the reference path.
 _UNCOVERED_STATES = _SHAPE_STATES | PhysicsState.HIDDEN | PhysicsState.ALIGN_PATH | PhysicsState.SLEDDING
+
+
+def _position_manager_reason(body: PhysicsObj) -> str | None:
+    """Why the kernel cannot run ``body``'s position manager, or None: it runs an interpolation
+    manager alone (:mod:`acphys.fast.kernels.interpolation`) of at most ``MAX_GLIDE_NODES`` nodes,
+    gliding with the motion interpreter's speed."""
+    manager = body.position_manager
+    if manager is None:
+        return None
+    if manager.sticky_manager is not None or manager.constraint_manager is not None:
+        return "a sticky or constraint manager"
+    glide = manager.interpolation_manager
+    if glide is None or not glide.position_queue:
+        return None
+    if len(glide.position_queue) > MAX_GLIDE_NODES:
+        return "an interpolation queue past its bound"
+    movement = body.movement_manager
+    if movement is None or movement.motion_interpreter is None:
+        return "interpolation without a motion interpreter"
+    return None
 
 
 def uncovered_reason(
@@ -45,15 +66,12 @@ def uncovered_reason(
         return "shape: not one or two spheres"
     if body._state & _UNCOVERED_STATES or body._transient_state & TransientState.CHECK_ETHEREAL:
         return "state"
-    managers = (
-        body.position_manager,
-        body.detection_manager,
-        body.target_manager,
-        body.particle_manager,
-        body.script_manager,
-    )
+    managers = (body.detection_manager, body.target_manager, body.particle_manager, body.script_manager)
     if any(manager is not None for manager in managers):
         return "managers"
+    reason = _position_manager_reason(body)
+    if reason is not None:
+        return reason
     movement = body.movement_manager
     if movement is not None and movement.moveto_manager is not None:
         return "a move-to manager"

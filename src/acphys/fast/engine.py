@@ -31,12 +31,12 @@ from acphys.fast.animations import AnimationTable
 from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
-from acphys.fast.kernels.cells import BAIL_REASONS
+from acphys.fast.kernels.cells import BAIL_REASONS, R_GLIDE
 from acphys.fast.kernels.context import make_context
-from acphys.fast.layout import BODY, TRANSITION
+from acphys.fast.layout import BODY, INTERPOLATION, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
-from acphys.fast.sync import load_body, store_bodies, vector_column
+from acphys.fast.sync import load_body, load_glide, store_bodies, store_glide, vector_column
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
@@ -119,6 +119,11 @@ class FastPhysics(Physics):
         #: Room for a body's record and the transition as they were, to undo an update handed back.
         self._saved_body = np.zeros(1, dtype=BODY)
         self._saved_transition = np.zeros(1, dtype=TRANSITION)
+        self._saved_glide = np.zeros(1, dtype=INTERPOLATION)
+        #: The interpolation table (``BODY.glide``): a row for each covered body with a position
+        #: manager, kept for it (``_glide_rows``: body index -> row) until the arrays are made again.
+        self._glides = np.zeros(0, dtype=INTERPOLATION)
+        self._glide_rows: dict[int, int] = {}
         self._clock = np.zeros(4, dtype=np.float64)
         # Room for at least one body's update in each log, or the kernel could never go on.
         rows = max(LOG_ROWS, kernels.MAX_STEPS_PER_UPDATE * kernels.DEFERRED_PER_STEP)
@@ -161,6 +166,8 @@ class FastPhysics(Physics):
         self._index = {id(body): i for i, body in enumerate(self._bodies)}
         self._records = np.zeros(len(self._bodies), dtype=BODY)
         self._uncovered = [""] * len(self._bodies)
+        self._glides = np.zeros(0, dtype=INTERPOLATION)
+        self._glide_rows.clear()
         self._arrays = build_world_arrays(self.world, self._bodies)
         self._grid_heads, bits = grid.heads_for(len(self._bodies))
         self._grid[grid.SPAN_BITS] = bits
@@ -186,12 +193,28 @@ class FastPhysics(Physics):
             reason = reason or "a sequence the kernel cannot play"
             record["covered"] = False
         self._uncovered[i] = reason or ""
+        if record["covered"] and body.position_manager is not None:
+            row = self._glide_row(i)
+            load_glide(self._glides[row], body)
+            record["glide"] = row
         shadows = body.shadow_objects[: record["shadow_cell"].size]
         record["num_shadow"] = len(shadows)
         for s, shadow in enumerate(shadows):
             record["shadow_cell_id"][s] = shadow.cell_id
             record["shadow_cell"][s] = arrays.cell_index(shadow.cell_id) if shadow.cell is not None else -1
             record["shadow_slot"][s] = shadow.index
+
+    def _glide_row(self, i: int) -> int:
+        """Body ``i``'s row of the interpolation table, made if need be (the table grows by
+        doubling: a new array, which the kernel's world record then names)."""
+        row = self._glide_rows.get(i)
+        if row is None:
+            row = self._glide_rows[i] = len(self._glide_rows)
+            if row >= len(self._glides):
+                grown = np.zeros(max(4, 2 * len(self._glides)), dtype=INTERPOLATION)
+                grown[: len(self._glides)] = self._glides
+                self._glides = grown
+        return row
 
     def _read_landblocks(self, cell_ids: list[int]) -> bool:
         """Give the kernel the landblocks of the land cells ``cell_ids`` that it does not know:
@@ -271,6 +294,7 @@ class FastPhysics(Physics):
                 tracing,
                 self._saved_body,
                 self._saved_transition,
+                self._saved_glide,
             )
             self.counts.kernel += int(self._counters[kernels.STEPS])
             self.counts.touching += int(self._counters[kernels.TOUCHING])
@@ -320,6 +344,7 @@ class FastPhysics(Physics):
             "journal": self._journal,
             "owed": self._owed,
             "handback": self._handback,
+            "glides": self._glides,
         }
         made = self._made_context
         if made is None or any(held[name] is not array for name, array in made[0].items()):
@@ -380,6 +405,9 @@ class FastPhysics(Physics):
         interpreter (which acts on the body), its sweep meets only what is shadowed in the cells
         it reaches, and it reports collisions to the bodies in its collision table
         (``partners``)."""
+        if self._gave_up_a_glide(i) and self._records[i]["stale"]:  # its reach is measured on its object
+            with _cycle_collector_paused():
+                self._write_back(np.array([i], dtype=np.intp), cells=[])
         boxes = self._reach_of_update(i)
         cells = cells_under(self.world_arrays, boxes) if boxes is not None else None
         if boxes is None or cells is None:
@@ -413,9 +441,10 @@ class FastPhysics(Physics):
         """Where body ``i``'s reference update can read (:mod:`acphys.fast.reach`), or None when
         that is not known: a covered body handed back during its sweep of one quantum reaches
         around its path, an uncovered one that reads only through its sweep around where it
-        stands; any other update may read anything."""
+        stands, as does a covered one whose interpolation gave a node up (the reference glides
+        it, or blips it to a node); any other update may read anything."""
         record, handback = self._records[i], self._handback
-        if record["covered"]:
+        if record["covered"] and not self._gave_up_a_glide(i):
             if handback[kernels.HB_SWEPT] != 1.0 or self._clock[0] - record["update_time"] > MAX_QUANTUM:
                 return None  # (of several quanta, only the last one's path is kept)
             ends = [
@@ -427,6 +456,10 @@ class FastPhysics(Physics):
         body = self._bodies[i]
         observer = self._writer.write_step if self._writer is not None else None
         return update_boxes(body, float(record["reach"]), self.world.cur_time - body.update_time, observer)
+
+    def _gave_up_a_glide(self, i: int) -> bool:
+        """Whether body ``i``, covered, was handed back by its interpolation (``R_GLIDE``)."""
+        return bool(self._records[i]["covered"]) and int(self._counters[kernels.REASON]) == R_GLIDE
 
     def _record_partners(self, i: int) -> set[int]:
         """The engine's bodies in body ``i``'s collision records as the kernel holds them."""
@@ -559,6 +592,9 @@ class FastPhysics(Physics):
         """Write record ``rows`` into ``bodies``: their state, sequences, cells and parts' frames
         (not their shadows)."""
         store_bodies(rows, bodies)
+        for body, row in zip(bodies, rows["glide"].tolist(), strict=True):
+            if row >= 0:
+                store_glide(self._glides[row], body)
         parts = [body.part_array for body in bodies]
         self._animations.store(rows, [p.sequence if p is not None else None for p in parts])
         for body, body_parts, cell_id in zip(bodies, parts, rows["cell_id"].tolist(), strict=True):
@@ -745,11 +781,11 @@ class FastPhysics(Physics):
         }
 
     def array_bytes(self) -> int:
-        """The bytes the kernel's arrays take: records, cells, shadow lists, static shapes, grid,
-        animations."""
+        """The bytes the kernel's arrays take: records, interpolation queues, cells, shadow lists,
+        static shapes, grid, animations."""
         arrays = self._arrays
         held = [self._records, self._grid_heads, self._transition, self._log, self._moves, self._journal]
-        held += [self._owed]
+        held += [self._owed, self._glides]
         if arrays is not None:
             held += [arrays.cells, arrays.shadow_pool, arrays.landblock_index]
             held += [arrays.other_spans, arrays.other_shapes]

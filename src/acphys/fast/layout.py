@@ -70,6 +70,7 @@ BODY = np.dtype(
         ("record_time", "f8", MAX_RECORDS),
         ("record_ethereal", "u1", MAX_RECORDS),
         ("has_movement_manager", "u1"),
+        ("glide", "i4"),  # its row of the interpolation table (INTERPOLATION), -1: no position manager
         # -- the setup (CPartArray) ----------------------------------------------------------
         ("num_sphere", "i1"),
         ("sphere", "f8", (MAX_SPHERES, 4)),  # centre x, y, z and radius, unscaled
@@ -97,6 +98,30 @@ BODY = np.dtype(
         ("seq_velocity", "f8", 3),
         ("seq_omega", "f8", 3),
         ("seq_anim_done", "i4"),  # the AnimDone hooks the last quantum queued
+    ]
+)
+
+#: The most nodes of an interpolation queue the kernel holds: retail's bound (acclient.c:389084).
+MAX_GLIDE_NODES = 20
+
+#: A covered body's ``PositionManager`` with its ``InterpolationManager`` (the only sub-manager a
+#: covered body may have): the queue of server positions, head first at ``first``, and the audit's
+#: state. One row per such body (``BODY.glide``); a body's glide is read with its record.
+INTERPOLATION = np.dtype(
+    [
+        ("loaded", "i4"),  # the nodes the queue held when the row was read
+        ("first", "i4"),  # the head node's index (the kernel drops nodes from the head only)
+        ("num_nodes", "i4"),
+        ("keep_heading", "u1"),
+        ("frame_counter", "i4"),
+        ("node_fail_counter", "i4"),
+        ("original_distance", "f8"),
+        ("progress_quantum", "f8"),
+        ("max_speed", "f8"),  # the motion interpreter's get_adjusted_max_speed (steps leave it)
+        ("node_cell_id", "u4", MAX_GLIDE_NODES),
+        ("node_origin", "f8", (MAX_GLIDE_NODES, 3)),
+        ("node_q", "f8", (MAX_GLIDE_NODES, 4)),
+        ("node_m", "f8", (MAX_GLIDE_NODES, 9)),
     ]
 )
 

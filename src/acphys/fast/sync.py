@@ -60,6 +60,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
     record["step_events"] = bool(body.step_events)
     record["colliding_with_environment"] = body.colliding_with_environment
     record["has_movement_manager"] = body.movement_manager is not None
+    record["glide"] = -1  # the engine gives a covered body with a position manager its row
     table = body.collision_table
     # Oldest first, as the kernel keeps them (it derives retail's iteration order from that).
     ids = table.oldest_first()[: record["record_time"].size] if table is not None else []
@@ -91,6 +92,45 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height
         record["free_heading"] = parts.allows_free_heading()
+
+
+def load_glide(row: np.void, body: PhysicsObj) -> None:
+    """Copy the interpolation manager of ``body``'s position manager (none: an empty queue) into
+    its :data:`~acphys.fast.layout.INTERPOLATION` row. The motion interpreter's adjusted max speed
+    is read once: a covered body's steps leave what it depends on (the interpreted state and the
+    speed factor; an AnimDone hook only retires pending motions)."""
+    manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    queue = list(manager.position_queue) if manager is not None else []
+    row["loaded"] = row["num_nodes"] = len(queue)
+    row["first"] = 0
+    row["keep_heading"] = manager is not None and manager.keep_heading
+    row["frame_counter"] = manager.frame_counter if manager is not None else 0
+    row["node_fail_counter"] = manager.node_fail_counter if manager is not None else 0
+    row["original_distance"] = manager.original_distance if manager is not None else 0.0
+    row["progress_quantum"] = manager.progress_quantum if manager is not None else 0.0
+    interpreter = body.movement_manager.motion_interpreter if body.movement_manager is not None else None
+    row["max_speed"] = interpreter.get_adjusted_max_speed() if queue and interpreter is not None else 0.0
+    for n, node in enumerate(queue):
+        frame = node.frame
+        row["node_cell_id"][n] = node.objcell_id
+        row["node_origin"][n] = _vec(frame.origin)
+        row["node_q"][n] = frame.rotation
+        row["node_m"][n] = frame.m
+
+
+def store_glide(row: np.void, body: PhysicsObj) -> None:
+    """Copy an :data:`~acphys.fast.layout.INTERPOLATION` row back into ``body``'s interpolation
+    manager: the kernel only drops nodes from the head of the queue and moves the audit on."""
+    manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    if manager is None:
+        return
+    for _ in range(int(row["loaded"]) - int(row["num_nodes"])):
+        manager.position_queue.popleft()
+    row["loaded"] = row["num_nodes"]
+    manager.frame_counter = int(row["frame_counter"])
+    manager.node_fail_counter = int(row["node_fail_counter"])
+    manager.original_distance = float(row["original_distance"])
+    manager.progress_quantum = float(row["progress_quantum"])
 
 
 #: The fields :func:`store_bodies` hands back.

@@ -41,12 +41,15 @@ BAIL_REASONS = (
     "a collision record ending with a body the kernel does not answer for",
     "a step down past a sphere (a root of a negative number)",
     "a land cell of a landblock the world does not make",
+    "an interpolation node given up (a failed audit or a blip)",
 )
 R_STATIC, R_CLIMB, R_SHAPE, R_CONTACT, R_CELL, R_NO_CELL, R_WATER = 1, 2, 3, 4, 5, 6, 7
 R_SHAPES, R_DEEP, R_MOTION, R_FULL, R_HOOK, R_RECORDS, R_ROOT = 8, 9, 10, 11, 12, 13, 14
 #: A land cell of a landblock the arrays lack (``TRANSITION.unread_cell``): the engine reads the
 #: landblock (the world makes one without terrain past its edge) and the step runs again.
 R_UNREAD = 15
+#: An interpolation audit failed or a blip is due (:mod:`acphys.fast.kernels.interpolation`).
+R_GLIDE = 16
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -19,7 +19,7 @@ from numba.core import cgutils
 from numba.extending import intrinsic
 from numba.np.arrayobj import make_array, populate_array
 
-from acphys.fast.layout import BODY, CELL
+from acphys.fast.layout import BODY, CELL, INTERPOLATION
 
 #: The arrays of the record, in order: ``(name, dtype, dimensions)``.
 ARRAYS = (
@@ -41,6 +41,7 @@ ARRAYS = (
     ("journal", np.int64, 2),  # the undo journal of a body's update
     ("owed", np.int32, 2),  # the deferred log (tick.DEFERRED_*)
     ("handback", np.float64, 1),  # where a handed-back update was sweeping (tick.HB_*)
+    ("glides", INTERPOLATION, 1),  # the covered bodies' interpolation queues (BODY.glide)
 )
 
 
@@ -107,6 +108,7 @@ def _viewer(array_type: types.Array):
 # Packed records (odd item sizes) are unaligned, as Numba types them in a NumPy array.
 _bodies = _viewer(types.Array(from_dtype(BODY), 1, "C", aligned=False))
 _cells = _viewer(types.Array(from_dtype(CELL), 1, "C", aligned=False))
+_glides = _viewer(types.Array(from_dtype(INTERPOLATION), 1, "C", aligned=False))
 _int32_1d = _viewer(types.Array(types.int32, 1, "C"))
 _int32_2d = _viewer(types.Array(types.int32, 2, "C"))
 _int64_1d = _viewer(types.Array(types.int64, 1, "C"))
@@ -204,3 +206,8 @@ def owed_of(w):
 @njit(cache=True, inline="always", _nrt=False)
 def handback_of(w):
     return _float64_1d(w.handback, w.handback_rows)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def glides_of(w):
+    return _glides(w.glides, w.glides_rows)

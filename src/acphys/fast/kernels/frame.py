@@ -38,6 +38,8 @@ _NORM_TOLERANCE = EPSILON * 5.0
 #: The degrees-radians factors of ``acphys.math.frame``.
 _RAD_PER_DEG = math.pi / 180.0
 _DEG_PER_RAD = 180.0 / math.pi
+#: The identity rotation's cached matrix (row-major ``m``), as a new ``Frame`` holds it.
+IDENTITY_M = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
 _EPSILON2 = EPSILON * EPSILON
 
 

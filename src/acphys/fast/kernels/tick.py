@@ -6,10 +6,11 @@ Ports of :class:`acphys.physics_obj.PhysicsObj`'s tick (``update_object``,
 shadow bookkeeping of :mod:`acphys.body.cells`, for the bodies :mod:`acphys.fast.coverage` lets the
 kernel step.
 
-A body's update is all or nothing. Before it starts, its record, the transition and the counters
-are saved and every change to the shadow pool is journalled; when anything hands the step back
-(``BAIL``: something only the reference path does), all of it is undone and
-:func:`run_bodies` returns that body's index for the engine to run on the reference path.
+A body's update is all or nothing. Before it starts, its record, its interpolation row, the
+transition and the counters are saved and every change to the shadow pool is journalled; when
+anything hands the step back (``BAIL``: something only the reference path does), all of it is
+undone and :func:`run_bodies` returns that body's index for the engine to run on the reference
+path.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from acphys.fast.kernels.cells import (
     BAIL,
     R_CONTACT,
     R_FULL,
+    R_GLIDE,
     R_HOOK,
     R_MOTION,
     R_NO_CELL,
@@ -47,6 +49,7 @@ from acphys.fast.kernels.context import (
     cells_of,
     clock_of,
     counters_of,
+    glides_of,
     grid_of,
     handback_of,
     heads_of,
@@ -59,6 +62,7 @@ from acphys.fast.kernels.context import (
     shadow_pool_of,
 )
 from acphys.fast.kernels.frame import (
+    IDENTITY_M,
     f32,
     frame_combine,
     frame_grotate,
@@ -69,6 +73,8 @@ from acphys.fast.kernels.frame import (
     v_normalized,
 )
 from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned, span_bits
+from acphys.fast.kernels.interpolation import GIVE_UP, blips
+from acphys.fast.kernels.interpolation import adjust_offset as glide_offset
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import copy_record, fill, put
@@ -111,6 +117,10 @@ FALLBACK = 1  # the body at the index must be updated on the reference path
 GROW = 2  # a cell's shadow list is full (counters[GROW_CELL]); grow it and call again from the index
 LOG_FULL = 3  # the trace log is full; write it out and call again from the index
 UNREAD = 4  # a land cell of a landblock the arrays lack (counters[UNREAD_CELL]); read it, call again
+
+#: ``update_position_internal``'s status when the interpolation manager gave a node up (beside the
+#: sequence's ``STATUS_*``): the reference path takes the step.
+STATUS_GLIDE = 3
 
 # Slots of the counters array.
 STEPS = 0  # body-steps the kernel took
@@ -393,17 +403,18 @@ def update_position_internal(w, b, quantum):
     """The candidate frame: root motion (the sequence played into an offset frame), scaled on
     walkable ground, combined onto the body's frame, then integrated. ``(status, origin, q, m)``:
     the sequence's status (``STATUS_REFERENCE``, returned at once: a frame hook the reference path
-    plays; ``STATUS_ANIM_DONE``: AnimDone hooks for ``process_hooks``, which the caller runs).
+    plays; ``STATUS_ANIM_DONE``: AnimDone hooks for ``process_hooks``, which the caller runs), or
+    ``STATUS_GLIDE``, returned at once: the interpolation manager gave a node up.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_position_internal` and
     :meth:`acphys.part_array.PartArray.update`.
     Retail: CPhysicsObj::UpdatePositionInternal @ 0x00512C30 (acclient.c:319988),
-    CPartArray::Update @ 0x00517DB0 (acclient.c:325139)
+    CPartArray::Update @ 0x00517DB0 (acclient.c:325139), PositionManager::adjust_offset
+    @ 0x00555190 (acclient.c:388286)
     """
-    identity_m = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     o = (0.0, 0.0, 0.0)
     oq = (1.0, 0.0, 0.0, 0.0)
-    om = identity_m
+    om = IDENTITY_M
     status = STATUS_DONE
     if not b.state & PS_HIDDEN:
         status, o, oq, om = sequence_update(b, anims_of(w), pos_frames_of(w), hooks_of(w), quantum, o, oq, om)
@@ -411,11 +422,33 @@ def update_position_internal(w, b, quantum):
             return status, o, oq, om
         factor = b.scale if b.transient & TS_ON_WALKABLE else 0.0
         o = (f32(o[0] * factor), f32(o[1] * factor), f32(o[2] * factor))
+    if b.glide >= 0:  # the position manager: its interpolation manager alone
+        return _glided_candidate(w, b, quantum, status, o, oq, om)
+    origin, q, m = _candidate(b, quantum, o, oq)
+    return status, origin, q, m
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _candidate(b, quantum, o, oq):
+    """The offset frame ``o, oq`` combined onto the body's frame, then integrated (the end of
+    ``update_position_internal``)."""
     origin, q, m = frame_combine(
-        (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), identity_m, t3(b.origin), t4(b.q), t9(b.m), o, oq
+        (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), IDENTITY_M, t3(b.origin), t4(b.q), t9(b.m), o, oq
     )
     if not b.state & PS_HIDDEN:
         origin, q, m = update_physics_internal(b, quantum, origin, q, m)
+    return origin, q, m
+
+
+@njit(cache=True, _nrt=False)
+def _glided_candidate(w, b, quantum, status, o, oq, om):
+    """``update_position_internal`` past the root motion for a body with a position manager: the
+    offset ``o, oq, om`` as its interpolation leaves it, then combined and integrated (a call of
+    its own, to keep the glide out of other bodies' steps)."""
+    glided, o, oq, om = glide_offset(b, glides_of(w)[b.glide], quantum, o, oq, om)
+    if glided == GIVE_UP:
+        return STATUS_GLIDE, o, oq, om
+    origin, q, m = _candidate(b, quantum, o, oq)
     return status, origin, q, m
 
 
@@ -785,8 +818,9 @@ def update_object_internal(w, tr, i, quantum, now):
     motion-table manager and motion interpreter, which no step reads, so they may run late.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (a covered body has no
-    managers to tick).
-    Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
+    managers to tick but its position manager's interpolation).
+    Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718),
+    PositionManager::UseTime @ 0x00555160 (acclient.c:388266)
     """
     b = bodies_of(w)[i]
     if not b.transient & TS_ACTIVE:
@@ -797,9 +831,17 @@ def update_object_internal(w, tr, i, quantum, now):
     status, origin, q, m = update_position_internal(w, b, quantum)
     if status == STATUS_REFERENCE:
         return bail(tr, R_HOOK), 0
+    if status == STATUS_GLIDE:
+        return bail(tr, R_GLIDE), 0
     if status == STATUS_ANIM_DONE:
         _defer(w, DEFERRED_ANIM_DONE, i, b.seq_anim_done, 0, 0)
-    return move_to_candidate(w, tr, i, quantum, now, origin, q, m)
+    status, events = move_to_candidate(w, tr, i, quantum, now, origin, q, m)
+    # PositionManager::UseTime, the step's last act (the movement manager's and the motion
+    # table's, before it, are the engine's after the kernel returns: they read no glide)
+    if status == 0 and b.glide >= 0 and blips(glides_of(w)[b.glide]):
+        tr.oi_body = -1  # the blip places the body at a node, not where the sweep went (handback)
+        return bail(tr, R_GLIDE), events
+    return status, events
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -951,7 +993,7 @@ def _note_handback(handback, tr, i):
 
 
 @njit(cache=True, _nrt=False)
-def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
+def run_bodies(context, tr_array, start, tracing, saved, saved_tr, saved_glide):
     """``CPhysics::UseTime`` from body ``start`` on: update each covered body; stop at the first
     that is not covered or hands its update back, or when a log or a cell's list is full.
     Returns ``(status, index)``: DONE with the number of bodies, or FALLBACK, GROW, LOG_FULL or
@@ -979,6 +1021,8 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
             return LOG_FULL, i
         copy_record(saved[0], b)
         copy_record(saved_tr[0], tr)
+        if b.glide >= 0:
+            copy_record(saved_glide[0], glides_of(w)[b.glide])
         logged, moved, steps, indebted = counters[LOGGED], counters[MOVES], counters[STEPS], counters[OWED]
         touching = counters[TOUCHING]
         physics_time = clock[1]
@@ -993,6 +1037,8 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr):
             _undo(w)
             copy_record(b, saved[0])
             copy_record(tr, saved_tr[0])
+            if b.glide >= 0:
+                copy_record(glides_of(w)[b.glide], saved_glide[0])
             counters[LOGGED], counters[MOVES] = logged, moved
             counters[STEPS], counters[OWED] = steps, indebted
             counters[TOUCHING] = touching

@@ -36,7 +36,7 @@ from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, INTERPOLATION, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
-from acphys.fast.sync import load_body, load_glide, store_bodies, store_glide, vector_column
+from acphys.fast.sync import load_body, load_glide, rows_of, store_bodies, store_glide, vector_column
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
@@ -523,11 +523,11 @@ class FastPhysics(Physics):
         ``keep_shadows`` the record keeps where the kernel cast the body's shadows (with their
         slots) and whether its object is behind: the object's own shadows may be new ones that
         cells left for a later write-back do not list yet."""
-        kept = self._records[[j]][list(_KERNEL_SHADOWS)] if keep_shadows else None
+        kept = rows_of(self._records, [j]) if keep_shadows else None
         self._load(j)
         if kept is not None:
             for name in _KERNEL_SHADOWS:
-                self._records[j][name] = kept[0][name]
+                self._records[name][j] = kept[name][0]
         reach = float(grid.reaches_now(self._records[j : j + 1])[0])
         self._grid[grid.MAX_REACH] = max(self._grid[grid.MAX_REACH], reach)
         grid.grid_place(self._records, self._grid_heads, int(self._grid[grid.SPAN_BITS]), j)
@@ -559,7 +559,7 @@ class FastPhysics(Physics):
         self._replay_moves()
         bodies = [self._bodies[i] for i in stale.tolist()]
         placed = [self._bodies[i] for i in places.tolist()]
-        rows = self._records[np.concatenate((stale, places))]
+        rows = rows_of(self._records, np.concatenate((stale, places)))
         self._store_rows(rows[: len(stale)], bodies)
         self._store_places(rows[len(stale) :], placed)
         bodies += placed
@@ -681,7 +681,7 @@ class FastPhysics(Physics):
                 continue
             if self._records[i]["stale"]:  # all but its shadows, which stay the kernel's
                 self._replay_moves()
-                self._store_rows(self._records[[i]], [body])
+                self._store_rows(rows_of(self._records, [i]), [body])
             event.apply(body)
             self._read_again(i, keep_shadows=True)
 

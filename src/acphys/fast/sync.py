@@ -178,7 +178,19 @@ def vector_column(column: np.ndarray) -> list[Vector3]:
     """The rows of a records' ``(n, 3)`` float field as ``Vector3``s, narrowed to float32 all at
     once as the constructor narrows each (beyond the float32 range an infinity, as ``f32``)."""
     with np.errstate(over="ignore"):
-        return vectors_of_float32(column.astype(np.float32).tolist())
+        return _vectors(column)
+
+
+def _vectors(column: np.ndarray) -> list[Vector3]:
+    """:func:`vector_column` inside a caller's ``np.errstate(over="ignore")``."""
+    return vectors_of_float32(column.astype(np.float32).tolist())
+
+
+def rows_of(records: np.ndarray, rows: np.ndarray | list[int]) -> np.ndarray:
+    """``records[rows]``, a copy, made as raw bytes: NumPy copies a structured record field by
+    field (about 20 µs a body record), a record of plain bytes at once."""
+    raw = records.view(np.dtype((np.void, records.dtype.itemsize)))
+    return raw[rows].view(records.dtype)
 
 
 def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
@@ -186,7 +198,8 @@ def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
     their cells, shadows or sequences, which the engine hands back; their parts are placed at the
     frames). Each field is read for all of them at once, as Python values."""
     columns = {name: records[name].tolist() for name in _STORED if name not in _VECTORS}
-    columns.update({name: vector_column(records[name]) for name in _VECTORS})
+    with np.errstate(over="ignore"):
+        columns.update({name: _vectors(records[name]) for name in _VECTORS})
     for j, body in enumerate(bodies):
         values = {name: column[j] for name, column in columns.items()}
         body._state = values["state"]

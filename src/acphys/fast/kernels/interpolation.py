@@ -2,10 +2,10 @@
 
 Ports of :class:`acphys.managers.interpolation.InterpolationManager` over a body's row of the
 interpolation table (:data:`~acphys.fast.layout.INTERPOLATION`, ``BODY.glide``): the offset a
-step takes towards the head node, the audit every fifth step, a node completed. What the kernel
-leaves to the reference path it reports as :data:`GIVE_UP`: an audit the glide fails (the node
-counts as failed, and the queue may end in a blip), and the blip ``UseTime`` makes when the
-failures pile up (:func:`blips`); the step is then handed back whole.
+step takes towards the head node, the audit every fifth step, a node completed. Two things are
+the reference path's, and the step is then handed back whole: an audit the glide fails
+(:data:`GIVE_UP`: the node counts as failed, and the queue may end in a blip), and the blip
+``UseTime`` makes when the failures pile up (:func:`blips`).
 """
 
 from __future__ import annotations

@@ -13,6 +13,7 @@ from acphys.fast.kernels.context import ARRAYS, bodies_of, journal_of, make_cont
 def _arrays() -> dict[str, np.ndarray]:
     shapes = {"anims": (2, 3), "pos_frames": (4, 7), "log": (5, 27), "moves": (5, 3), "journal": (6, 3)}
     shapes.update(owed=(5, 5), other_spans=(2, 2), other_shapes=(4, 5))
+    shapes.update(building_shapes=(1, 5), door_spans=(2, 2), door_planes=(6, 4))
     return {name: np.zeros(shapes.get(name, (3,)), dtype=dtype) for name, dtype, _ in ARRAYS}
 
 

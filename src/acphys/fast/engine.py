@@ -345,6 +345,9 @@ class FastPhysics(Physics):
             "owed": self._owed,
             "handback": self._handback,
             "glides": self._glides,
+            "building_shapes": arrays.building_shapes,
+            "door_spans": arrays.door_spans,
+            "door_planes": arrays.door_planes,
         }
         made = self._made_context
         if made is None or any(held[name] is not array for name, array in made[0].items()):
@@ -789,6 +792,7 @@ class FastPhysics(Physics):
         if arrays is not None:
             held += [arrays.cells, arrays.shadow_pool, arrays.landblock_index]
             held += [arrays.other_spans, arrays.other_shapes]
+            held += [arrays.building_shapes, arrays.door_spans, arrays.door_planes]
         held += [self._animations.anims, self._animations.pos_frames, self._animations.hooks]
         return sum(array.nbytes for array in held)
 

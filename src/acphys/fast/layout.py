@@ -136,7 +136,13 @@ CELL = np.dtype(
         ("num_polys", "i1"),  # 2, or 0 for a cell without terrain
         ("vertex", "f8", (2, 3, 3)),  # triangle, vertex, xyz (landblock-local)
         ("plane", "f8", (2, 4)),  # normal x, y, z and d
-        ("uncovered", "u1"),  # a building, voyeurs or anything else the kernel lacks
+        ("uncovered", "u1"),  # voyeurs, a building it cannot bound, or anything else the kernel lacks
+        # a building the kernel can bound (acphys.fast.buildings): its shell's ball (a row of the
+        # building shapes, -1: a shell that answers OK) and the planes of its doors' cells
+        ("building", "u1"),
+        ("building_ball", "i4"),
+        ("building_doors", "i4"),  # its first row of the door spans
+        ("num_building_doors", "i4"),
         ("dirty", "u1"),  # the kernel changed the shadow list since the reference cell was written
         ("num_shadows", "i4"),
         ("num_others", "i4"),  # shadows of objects that are not the engine's bodies (static objects)

@@ -79,19 +79,19 @@ def reach_shapes(obj: PhysicsObj) -> list[Shape] | None:
             bound, size = part.physics_sphere, f32(part.gfxobj_scale.z)
             if bound is None or not part.pos.objcell_id or not size > 0.0:
                 return None
-            shapes.append((*_placed(part.pos, bound.center * size), abs(bound.radius) * size, PART_BALL))
+            shapes.append((*placed(part.pos, bound.center * size), abs(bound.radius) * size, PART_BALL))
     elif parts.get_num_cylsphere():
         for cyl in parts.get_cylsphere():
-            shapes.append((*_placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), COLUMN))
+            shapes.append((*placed(at, cyl.low_pt * scale), abs(cyl.radius * scale), COLUMN))
     else:
         for sphere in parts.get_sphere():
-            shapes.append((*_placed(at, sphere.center * scale), abs(sphere.radius * scale), BALL))
+            shapes.append((*placed(at, sphere.center * scale), abs(sphere.radius * scale), BALL))
     if not all(math.isfinite(value) for shape in shapes for value in shape):
         return None
     return shapes
 
 
-def _placed(position: Position, local: Vector3) -> tuple[float, float, float]:
+def placed(position: Position, local: Vector3) -> tuple[float, float, float]:
     """The point ``local`` to ``position``'s frame, in landblock-global metres."""
     point = position.frame.localtoglobal(local)
     cell_id = position.objcell_id

@@ -4,9 +4,11 @@ The kernel knows the land cells of the loaded landblocks (``LandBlock.lcell``), 
 ``64 * landblock + (low word - 1)``, with their two triangles and water type, and those of the
 landblocks past the world's edge that bodies have reached (the terrain-less cells ``World.get_cell``
 makes there, read by :meth:`WorldArrays.add_landblocks` when the kernel asks). A cell it cannot
-sweep through alone is marked ``uncovered``: a building stands in it, global detection watches
-it (voyeurs), or an entry restriction is set; a step that would touch such a cell (or an env
-cell) runs on the reference path instead.
+sweep through alone is marked ``uncovered``: global detection watches it (voyeurs), an entry
+restriction is set, or a building stands in it that the kernel cannot bound; a step that would
+touch such a cell (or an env cell) runs on the reference path instead. A building it can bound
+(:mod:`acphys.fast.buildings`) is kept as its shell's ball and its doors' planes, and a step that
+comes within their reach runs there too.
 
 Each cell's shadow list is kept in the shadow pool, in the order of the reference
 ``ObjCell.shadow_objects``: a body's entry is its index in the engine's body table, any other
@@ -22,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from acphys.fast.buildings import building_reach
 from acphys.fast.layout import CELL
 from acphys.fast.statics import SHAPE_WIDTH, shape_arrays
 from acphys.math.cell_id import landblock_of
@@ -56,6 +59,12 @@ class WorldArrays:
     #: ``other_spans[k]`` its rows of ``other_shapes``, as :func:`~acphys.fast.statics.shape_arrays`.
     other_spans: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int32))
     other_shapes: np.ndarray = field(default_factory=lambda: np.zeros((0, SHAPE_WIDTH), dtype=np.float64))
+    #: The buildings' shell balls (rows as ``other_shapes``), their doors (``door_spans``: each
+    #: door's rows ``(first, count)`` of ``door_planes``) and those planes (nx, ny, nz, d), for
+    #: the cells' ``building_*`` fields.
+    building_shapes: np.ndarray = field(default_factory=lambda: np.zeros((0, SHAPE_WIDTH), dtype=np.float64))
+    door_spans: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int32))
+    door_planes: np.ndarray = field(default_factory=lambda: np.zeros((0, 4), dtype=np.float64))
     #: The landblocks (``0xXXYY``) read as the terrain-less cells the world makes past its edge.
     void_blocks: set[int] = field(default_factory=set)
 
@@ -112,6 +121,7 @@ class WorldArrays:
         lists = [shadow_entries(self, first + i, cell, index) for i, cell in enumerate(new)]
         capacity = np.array([_room(len(entries)) for entries in lists], dtype=np.int32)
         cells = np.concatenate(records)
+        self._place_buildings(cells, new)
         cells["shadow_capacity"] = capacity
         cells["shadow_start"] = len(self.shadow_pool) + np.concatenate(([0], np.cumsum(capacity)[:-1]))
         self.cells = np.concatenate((self.cells, cells))
@@ -121,6 +131,32 @@ class WorldArrays:
             self.set_shadow_list(first + i, entries)
         if len(self.others) != known:
             self.place_others()
+
+    def _place_buildings(self, records: np.ndarray, land_cells: Sequence[LandCell]) -> None:
+        """Fill the ``building_*`` fields of new cell ``records`` and the building arrays (a
+        building the kernel cannot bound leaves its cell uncovered)."""
+        balls, spans, planes = [], [], []
+        ball_row, span_row, plane_row = len(self.building_shapes), len(self.door_spans), len(self.door_planes)
+        for record, cell in zip(records, land_cells, strict=True):
+            record["building_ball"] = -1
+            reach = building_reach(cell.building) if cell.building is not None else None
+            if reach is None:
+                continue
+            ball, doors = reach
+            record["building"] = True
+            if ball is not None:
+                record["building_ball"] = ball_row + len(balls)
+                balls.append(ball)
+            record["building_doors"] = span_row + len(spans)
+            record["num_building_doors"] = len(doors)
+            for door in doors:
+                spans.append((plane_row + len(planes), len(door)))
+                planes.extend(door)
+        if balls:
+            self.building_shapes = np.concatenate((self.building_shapes, np.array(balls, dtype=np.float64)))
+        if spans:
+            self.door_spans = np.concatenate((self.door_spans, np.array(spans, dtype=np.int32)))
+            self.door_planes = np.concatenate((self.door_planes, np.array(planes, dtype=np.float64)))
 
     def place_others(self) -> None:
         """Measure again where the other objects' shapes lie (new arrays; a static object only
@@ -143,9 +179,10 @@ class WorldArrays:
 
 
 def _uncovered(cell: LandCell) -> bool:
-    """What the kernel leaves to the reference path in a land cell: a building, watching voyeurs,
-    an entry restriction."""
-    return cell.building is not None or bool(cell.voyeur_table) or bool(cell.restriction_obj)
+    """What the kernel leaves to the reference path in a land cell: watching voyeurs, an entry
+    restriction, a building it cannot bound."""
+    unbounded = cell.building is not None and building_reach(cell.building) is None
+    return unbounded or bool(cell.voyeur_table) or bool(cell.restriction_obj)
 
 
 def build_world_arrays(world: World, bodies: Sequence[PhysicsObj]) -> WorldArrays:

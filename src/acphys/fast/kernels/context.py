@@ -42,6 +42,9 @@ ARRAYS = (
     ("owed", np.int32, 2),  # the deferred log (tick.DEFERRED_*)
     ("handback", np.float64, 1),  # where a handed-back update was sweeping (tick.HB_*)
     ("glides", INTERPOLATION, 1),  # the covered bodies' interpolation queues (BODY.glide)
+    ("building_shapes", np.float64, 2),  # the buildings' shell balls (acphys.fast.buildings)
+    ("door_spans", np.int32, 2),  # each building door's rows of door_planes
+    ("door_planes", np.float64, 2),  # the planes of the doors' cells
 )
 
 
@@ -211,3 +214,18 @@ def handback_of(w):
 @njit(cache=True, inline="always", _nrt=False)
 def glides_of(w):
     return _glides(w.glides, w.glides_rows)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def building_shapes_of(w):
+    return _float64_2d(w.building_shapes, (w.building_shapes_rows, w.building_shapes_cols))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def door_spans_of(w):
+    return _int32_2d(w.door_spans, (w.door_spans_rows, w.door_spans_cols))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def door_planes_of(w):
+    return _float64_2d(w.door_planes, (w.door_planes_rows, w.door_planes_cols))

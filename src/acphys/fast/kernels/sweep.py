@@ -35,6 +35,7 @@ import math
 from numba import njit
 
 from acphys.constants import EPSILON, FLOOR_Z, LANDING_Z, SMALL_STEP_DOWN_HEIGHT
+from acphys.fast.buildings import MARGIN as BUILDING_MARGIN
 from acphys.fast.kernels.cells import (
     BAIL,
     R_CELL,
@@ -54,7 +55,10 @@ from acphys.fast.kernels.cells import (
 from acphys.fast.kernels.contact import body_find_obj_collisions, out_of_reach
 from acphys.fast.kernels.context import (
     bodies_of,
+    building_shapes_of,
     cells_of,
+    door_planes_of,
+    door_spans_of,
     grid_of,
     heads_of,
     landblock_index_of,
@@ -97,6 +101,7 @@ from acphys.fast.kernels.store import put
 from acphys.fast.statics import COLUMN, PART_BALL, UNBOUNDED
 from acphys.fast.statics import MARGIN as STATIC_MARGIN
 from acphys.flags import ObjectInfoState, PhysicsState, TransitionState
+from acphys.geometry.bsp import CELL_SPHERE_SLACK
 from acphys.world.terrain import WaterType
 
 OK = int(TransitionState.OK)
@@ -338,10 +343,6 @@ def statics_out_of_reach(w, tr, k):
     """
     cell = cells_of(w)[k]
     pool, spans, shapes = shadow_pool_of(w), other_spans_of(w), other_shapes_of(w)
-    bx, by = block_origin(tr.check_cell_id)
-    reach = 0.0
-    for t in range(tr.num_sphere):
-        reach = max(reach, tr.global_sphere[t, 3])
     seen = 0
     for i in range(cell.num_shadows):
         if seen == cell.num_others:  # the rest of the list holds bodies only
@@ -351,21 +352,67 @@ def statics_out_of_reach(w, tr, k):
             continue
         seen += 1
         first, count = spans[-1 - entry, 0], spans[-1 - entry, 1]
-        if count == UNBOUNDED:
+        if count == UNBOUNDED or not shapes_out_of_reach(tr, shapes, first, count):
             return False
-        for row in range(first, first + count):
-            limit = shapes[row, 3] + reach + STATIC_MARGIN
-            kind = shapes[row, 4]
-            for t in range(tr.num_sphere):
-                x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
-                if kind == PART_BALL:  # where cache_localspace_sphere puts the sphere: local at check_pos
-                    local = (tr.local_sphere[t, 0], tr.local_sphere[t, 1], tr.local_sphere[t, 2])
-                    x, y, z = frame_localtoglobal(t3(tr.check_origin), t9(tr.check_m), local)
-                dx, dy, dz = bx + x - shapes[row, 0], by + y - shapes[row, 1], z - shapes[row, 2]
-                if kind == COLUMN:
-                    dz = 0.0
-                if not dx * dx + dy * dy + dz * dz > limit * limit:
-                    return False
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def shapes_out_of_reach(tr, shapes, first, count):
+    """Whether rows ``first, first + count`` of ``shapes`` (balls, columns and part balls,
+    :mod:`acphys.fast.statics`) all lie farther from every moving sphere than their radius, the
+    largest moving radius and ``MARGIN`` (see :func:`statics_out_of_reach`)."""
+    bx, by = block_origin(tr.check_cell_id)
+    reach = 0.0
+    for t in range(tr.num_sphere):
+        reach = max(reach, tr.global_sphere[t, 3])
+    for row in range(first, first + count):
+        limit = shapes[row, 3] + reach + STATIC_MARGIN
+        kind = shapes[row, 4]
+        for t in range(tr.num_sphere):
+            x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
+            if kind == PART_BALL:  # where cache_localspace_sphere puts the sphere: local at check_pos
+                local = (tr.local_sphere[t, 0], tr.local_sphere[t, 1], tr.local_sphere[t, 2])
+                x, y, z = frame_localtoglobal(t3(tr.check_origin), t9(tr.check_m), local)
+            dx, dy, dz = bx + x - shapes[row, 0], by + y - shapes[row, 1], z - shapes[row, 2]
+            if kind == COLUMN:
+                dz = 0.0
+            if not dx * dx + dy * dy + dz * dz > limit * limit:
+                return False
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def building_shell_out_of_reach(w, tr, k):
+    """Whether cell ``k``'s building's shell answers the sweep OK, changing nothing a step reads:
+    its part ball lies out of reach (:mod:`acphys.fast.buildings`). Not retail: passes
+    ``CBuildingObj::find_building_collisions`` (acclient.c:719115) by.
+    """
+    ball = cells_of(w)[k].building_ball
+    return ball < 0 or shapes_out_of_reach(tr, building_shapes_of(w), ball, 1)
+
+
+@njit(cache=True, _nrt=False)
+def building_doors_out_of_reach(w, tr, k):
+    """Whether no cell behind cell ``k``'s building's doors takes any global sphere: each lies
+    behind a plane of each door's cell by more than ``radius + 0.01`` and ``MARGIN``
+    (:mod:`acphys.fast.buildings`). Not retail: passes ``CBuildingObj::find_building_transit_cells``
+    (acclient.c:719067) by.
+    """
+    cell = cells_of(w)[k]
+    spans, planes = door_spans_of(w), door_planes_of(w)
+    for door in range(cell.building_doors, cell.building_doors + cell.num_building_doors):
+        first, count = spans[door, 0], spans[door, 1]
+        for t in range(tr.num_sphere):
+            x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
+            behind = -(tr.global_sphere[t, 3] + CELL_SPHERE_SLACK + BUILDING_MARGIN)
+            outside = False
+            for row in range(first, first + count):
+                if planes[row, 0] * x + planes[row, 1] * y + planes[row, 2] * z + planes[row, 3] <= behind:
+                    outside = True
+                    break
+            if not outside:
+                return False
     return True
 
 
@@ -435,14 +482,18 @@ def _ask_bodies_near(w, tr, k):
 
 @njit(cache=True, _nrt=False)
 def find_collisions(w, tr, k):
-    """Terrain, then the building (a cell with one is uncovered), then the shadowed objects.
+    """Terrain, then the building (within its reach, the reference path's), then the shadowed
+    objects.
 
     Port of :meth:`acphys.world.land_cell.LandCell.find_collisions`.
     Retail: CLandCell::find_collisions @ 0x00532D60 (acclient.c:354886)
     """
-    if cells_of(w)[k].uncovered:
+    cell = cells_of(w)[k]
+    if cell.uncovered:
         return bail(tr, R_CELL)
     result = find_env_collisions(w, tr, k)
+    if result == OK and cell.building and not building_shell_out_of_reach(w, tr, k):
+        return bail(tr, R_CELL)
     if result == OK:
         result = find_obj_collisions(w, tr, k)
     return result
@@ -495,13 +546,15 @@ def find_cell_list(w, tr, want_cell):
     if (cell_id & 0xFFFF) >= 0x100 or not add_all_outside_cells(w, tr, cell_id):
         tr.bail = R_CELL
         return -2
+    buildings = False
     for i in range(tr.num_cells):
         k = tr.cells[i]
         if k < 0:
             return _unread(tr, tr.cell_ids[i])
-        if cells[k].uncovered:
+        if cells[k].uncovered or (cells[k].building and not building_doors_out_of_reach(w, tr, k)):
             tr.bail = R_CELL
             return -2
+        buildings |= bool(cells[k].building)
     if cell_index(landblock_index_of(w), cell_id) < 0:
         return _unread(tr, cell_id)
     curr = -1
@@ -514,7 +567,8 @@ def find_cell_list(w, tr, want_cell):
                 curr = k
         elif point_in_cell(w, k, px, py):
             curr = k
-    _memo_store(tr, curr)
+    if not buildings:  # a building's doors see the spheres' z as well
+        _memo_store(tr, curr)
     return curr if want_cell else -1
 
 

@@ -245,8 +245,8 @@ SERVER_STEP = 0.15
 
 def _server(count: int, seconds: float, engine: str = "reference") -> Simulation:
     """The hills walkers as a server drives them: one in 100 a remote body gliding round a 2-m
-    circle to interpolation nodes sent ten times a second (its position manager keeps its updates
-    on the reference path), one in 100 told to turn left and right by turns ten times a second
+    circle to interpolation nodes sent ten times a second (its position manager's interpolation,
+    which the kernel runs), one in 100 told to turn left and right by turns ten times a second
     (events that change its motion alone)."""
     document = _hills_document(count, seconds, "bench-server")
     remote = {f"h{i}" for i in range(count) if i % SERVER_EVERY == SERVER_EVERY // 2}

@@ -577,7 +577,8 @@ class FastPhysics(Physics):
         dirty = arrays.cells["dirty"]
         written = np.flatnonzero(dirty).tolist() if cells is None else [k for k in cells if dirty[k]]
         for k in written:
-            self._write_cell(k, moved | self._pending.pop(k, set()))
+            pending = self._pending.pop(k, None)  # (a union with the written bodies copies them all)
+            self._write_cell(k, moved | pending if pending else moved)
         dirty[written] = False
         if cells is None:
             self._pending.clear()

@@ -276,7 +276,7 @@ def test_uncovered_bodies_among_walkers_run_as_on_the_reference(
     _checking_each_reference_update(monkeypatch)
     comparison = compare_engines(_walkers_a_drifter_and_a_remote, tmp_path)
     assert comparison.identical, comparison.divergence
-    assert comparison.reasons.get("shape: not one or two spheres", 0) >= 85  # the drifter, every tick
+    assert comparison.reasons.get("shape: more than two spheres", 0) >= 85  # the drifter, every tick
     assert comparison.reasons.get("a sticky or constraint manager", 0) >= 80  # the remote body
     assert comparison.reasons.get("a move-to manager", 0) >= 30  # the errand, until it arrives
     assert comparison.reasons.get("a body the kernel cannot collide with", 0) >= 1  # walkers they met

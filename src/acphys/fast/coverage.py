@@ -23,7 +23,7 @@ from acphys.world.obj_cell import ObjCell
 
 _SHAPE_STATES = PhysicsState.PARTICLE_EMITTER | PhysicsState.HAS_PHYSICS_BSP
 #: Physics-state bits whose handling the kernel leaves to the reference path.
-_UNCOVERED_STATES = _SHAPE_STATES | PhysicsState.HIDDEN | PhysicsState.ALIGN_PATH | PhysicsState.SLEDDING
+_UNCOVERED_STATES = _SHAPE_STATES | PhysicsState.HIDDEN | PhysicsState.SLEDDING
 
 
 def _position_manager_reason(body: PhysicsObj) -> str | None:
@@ -62,8 +62,8 @@ def uncovered_reason(
     setup = parts.setup
     if setup.parts is not None or setup.cylspheres or setup.physics_bsp is not None:
         return "shape: parts, cylspheres or a BSP"
-    if not 1 <= len(setup.spheres) <= MAX_SPHERES:
-        return "shape: not one or two spheres"
+    if len(setup.spheres) > MAX_SPHERES:
+        return "shape: more than two spheres"
     if body._state & _UNCOVERED_STATES or body._transient_state & TransientState.CHECK_ETHEREAL:
         return "state"
     managers = (body.detection_manager, body.target_manager, body.particle_manager, body.script_manager)

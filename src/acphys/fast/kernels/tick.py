@@ -68,9 +68,11 @@ from acphys.fast.kernels.frame import (
     frame_grotate,
     frame_is_valid,
     frame_is_valid_except_for_heading,
+    frame_set_vector_heading,
     position_get_offset,
     v_length,
     v_normalized,
+    v_sub,
 )
 from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned, span_bits
 from acphys.fast.kernels.interpolation import GIVE_UP, blips
@@ -846,14 +848,23 @@ def update_object_internal(w, tr, i, quantum, now):
 
 @njit(cache=True, inline="always", _nrt=False)
 def move_to_candidate(w, tr, i, quantum, now, origin, q, m):
-    """The second half of an active step: sweep to the candidate and commit (or keep the origin).
-    Returns ``(status, events)``.
+    """The second half of an active step: sweep to the candidate and commit (or keep the origin:
+    a body of no spheres, which a body without a movement manager on walkable ground also leaves
+    inactive, or one whose candidate lies within EPSILON of its origin). A body that aligns with its
+    path faces along the step first. Returns ``(status, events)``.
 
-    Part of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal`.
+    Part of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (and ``_align_heading``:
+    the ``ALIGN_PATH`` branch; a ``SLEDDING`` body is not covered).
     Retail: CPhysicsObj::UpdateObjectInternal @ 0x005156B0 (acclient.c:322718)
     """
     b = bodies_of(w)[i]
     events = 0
+    if b.num_sphere == 0:
+        if not b.has_movement_manager and b.transient & TS_ON_WALKABLE:
+            b.transient &= ~TS_ACTIVE
+        set_frame(b, t3(b.origin), q, m)
+        fill(b.cached_velocity, 0.0)
+        return 0, events
     if (
         abs(origin[0] - b.origin[0]) <= EPSILON
         and abs(origin[1] - b.origin[1]) <= EPSILON
@@ -862,6 +873,8 @@ def move_to_candidate(w, tr, i, quantum, now, origin, q, m):
         set_frame(b, t3(b.origin), q, m)
         fill(b.cached_velocity, 0.0)
         return 0, events
+    if b.state & PS_ALIGN_PATH:  # face along the step: Frame::set_vector_heading of its direction
+        q, m = frame_set_vector_heading(origin, q, m, v_normalized(v_sub(origin, t3(b.origin))))
     found = transition(w, tr, i, origin, q, m)
     if found == BAIL:
         return BAIL, events

@@ -33,7 +33,7 @@ from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
 from acphys.fast.kernels.cells import BAIL_REASONS, R_GLIDE
 from acphys.fast.kernels.context import make_context
-from acphys.fast.layout import BODY, INTERPOLATION, TRANSITION
+from acphys.fast.layout import BODY, INTERPOLATION, MAX_GLIDE_NODES, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
 from acphys.fast.sync import load_body, load_glide, rows_of, store_bodies, store_glide, vector_column
@@ -672,8 +672,9 @@ class FastPhysics(Physics):
         """Apply events to up-to-date objects: one of ``OWN_STATE_ACTIONS`` (read from a scenario
         or named to ``add_event``) to its body written back alone (but for its shadows, which no
         such event reads or moves: they stay the kernel's, to be written with their cells) and
-        read again after; any other (a function among them) to the whole world written back,
-        every body read again before the next run."""
+        read again after (an interpolation node to a body the kernel glides: its queue alone, when
+        that is all the node changed); any other (a function among them) to the whole world
+        written back, every body read again before the next run."""
         for event in events:
             body = body_named(event.body)
             i = self._index.get(id(body))
@@ -686,8 +687,27 @@ class FastPhysics(Physics):
             if self._records[i]["stale"]:  # all but its shadows, which stay the kernel's
                 self._replay_moves()
                 self._store_rows(rows_of(self._records, [i]), [body])
+            frame = body.position.frame
+            placed = (frame.rotation, tuple(frame.origin))
             event.apply(body)
-            self._read_again(i, keep_shadows=True)
+            if event.action != "interpolate_to" or not self._only_glided(i, body, placed):
+                self._read_again(i, keep_shadows=True)
+
+    def _only_glided(self, i: int, body: PhysicsObj, placed: tuple[Any, ...]) -> bool:
+        """After an interpolation node to body ``i``: when the kernel glides the body and the node
+        left its frame as it was (``placed``: a node within 0.05 m turns the body to face as the
+        node does) and its queue within the kernel's bound, read its queue again, and the events
+        it holds, and say True; else False (the body is to be read again whole)."""
+        row = int(self._records[i]["glide"])
+        manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+        frame = body.position.frame
+        if row < 0 or manager is None or len(manager.position_queue) > MAX_GLIDE_NODES:
+            return False
+        if (frame.rotation, tuple(frame.origin)) != placed:
+            return False
+        load_glide(self._glides[row], body)
+        self._records[i]["step_events"] = bool(body.step_events)
+        return True
 
     def _write_cell(self, k: int, moved: set[int]) -> None:
         """Make the reference cell ``k``'s shadow list the kernel's (``moved``: the ``id`` of each

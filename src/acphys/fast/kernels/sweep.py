@@ -525,10 +525,11 @@ def find_cell_list(w, tr, want_cell):
     ``want_cell``, also the cell holding sphere 0's centre (-1 for none, -2 to bail).
 
     Port of :meth:`acphys.world.obj_cell.ObjCell.find_cell_list` for an outdoor ``check_pos``
-    (land cells have no transit cells of their own beyond ``add_all_outside_cells``; a cell with
-    a building is uncovered). The list is a function of ``check_pos``'s cell id and the spheres'
-    x, y and radii alone, so the last one found is reused while they stay the same (the z of a
-    step-down or a landing does not change it); the terrain test's last triangle answers
+    (land cells have no transit cells of their own beyond ``add_all_outside_cells``; a building's
+    doors' cells must take no sphere, or the step bails). Without a building the list is a
+    function of ``check_pos``'s cell id and the spheres' x, y and radii alone, so the last one
+    found is reused while they stay the same (the z of a step-down or a landing does not change
+    it); the terrain test's last triangle answers
     ``point_in_cell`` for its cell and point when the cell has terrain (an upright body's low point
     lies under its sphere's centre).
     Retail: CObjCell::find_cell_list @ 0x0052B4E0 (acclient.c:346960)

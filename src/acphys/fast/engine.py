@@ -36,7 +36,15 @@ from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, INTERPOLATION, MAX_GLIDE_NODES, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
-from acphys.fast.sync import load_body, load_glide, rows_of, store_bodies, store_glide, vector_column
+from acphys.fast.sync import (
+    interpolation_of,
+    load_body,
+    load_glide,
+    rows_of,
+    store_bodies,
+    store_glide,
+    vector_column,
+)
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
 from acphys.flags import TransientState, flag_names
 from acphys.math.cell_id import format_cell_id, landblock_of
@@ -699,7 +707,7 @@ class FastPhysics(Physics):
         node does) and its queue within the kernel's bound, read its queue again, and the events
         it holds, and say True; else False (the body is to be read again whole)."""
         row = int(self._records[i]["glide"])
-        manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+        manager = interpolation_of(body)
         frame = body.position.frame
         if row < 0 or manager is None or len(manager.position_queue) > MAX_GLIDE_NODES:
             return False

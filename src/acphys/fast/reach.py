@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from acphys.constants import BLOCK_LENGTH, CELL_LENGTH, GRAVITY, MAX_LCOORD, MAX_QUANTUM, MAX_VELOCITY
+from acphys.fast.sync import interpolation_of
 from acphys.fast.world_arrays import WorldArrays
 from acphys.math.cell_id import lcoord_to_gid
 from acphys.math.position import Position
@@ -156,7 +157,7 @@ def update_boxes(body: PhysicsObj, reach: float, quantum: float, observer: objec
         travel += played * abs(body.scale)
     x, y = _position_xy(body.position)
     places = []
-    interpolation = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    interpolation = interpolation_of(body)
     if interpolation is not None:
         queue = interpolation.position_queue
         if queue:

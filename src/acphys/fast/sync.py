@@ -15,6 +15,7 @@ import numpy as np
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
 from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
+from acphys.managers.interpolation import InterpolationManager
 from acphys.math.vector import Vector3, vectors_of_float32
 from acphys.physics_obj import PhysicsObj
 
@@ -94,12 +95,17 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         record["free_heading"] = parts.allows_free_heading()
 
 
+def interpolation_of(body: PhysicsObj) -> InterpolationManager | None:
+    """The interpolation manager of ``body``'s position manager, if it has both."""
+    return body.position_manager.interpolation_manager if body.position_manager is not None else None
+
+
 def load_glide(row: np.void, body: PhysicsObj) -> None:
-    """Copy the interpolation manager of ``body``'s position manager (none: an empty queue) into
-    its :data:`~acphys.fast.layout.INTERPOLATION` row. The motion interpreter's adjusted max speed
-    is read once: a covered body's steps leave what it depends on (the interpreted state and the
+    """Copy ``body``'s interpolation manager (none: an empty queue) into its
+    :data:`~acphys.fast.layout.INTERPOLATION` row. The motion interpreter's adjusted max speed is
+    read once: a covered body's steps leave what it depends on (the interpreted state and the
     speed factor; an AnimDone hook only retires pending motions)."""
-    manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    manager = interpolation_of(body)
     queue = list(manager.position_queue) if manager is not None else []
     row["loaded"] = row["num_nodes"] = len(queue)
     row["first"] = 0
@@ -121,7 +127,7 @@ def load_glide(row: np.void, body: PhysicsObj) -> None:
 def store_glide(row: np.void, body: PhysicsObj) -> None:
     """Copy an :data:`~acphys.fast.layout.INTERPOLATION` row back into ``body``'s interpolation
     manager: the kernel only drops nodes from the head of the queue and moves the audit on."""
-    manager = body.position_manager.interpolation_manager if body.position_manager is not None else None
+    manager = interpolation_of(body)
     if manager is None:
         return
     for _ in range(int(row["loaded"]) - int(row["num_nodes"])):

@@ -400,20 +400,25 @@ def building_doors_out_of_reach(w, tr, k):
     (acclient.c:719067) by.
     """
     cell = cells_of(w)[k]
-    spans, planes = door_spans_of(w), door_planes_of(w)
+    spans = door_spans_of(w)
     for door in range(cell.building_doors, cell.building_doors + cell.num_building_doors):
-        first, count = spans[door, 0], spans[door, 1]
         for t in range(tr.num_sphere):
-            x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
-            behind = -(tr.global_sphere[t, 3] + CELL_SPHERE_SLACK + BUILDING_MARGIN)
-            outside = False
-            for row in range(first, first + count):
-                if planes[row, 0] * x + planes[row, 1] * y + planes[row, 2] * z + planes[row, 3] <= behind:
-                    outside = True
-                    break
-            if not outside:
+            if not _behind_a_plane(w, tr, t, spans[door, 0], spans[door, 1]):
                 return False
     return True
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _behind_a_plane(w, tr, t, first, count):
+    """Whether global sphere ``t`` lies behind one of door planes ``first, first + count`` by more
+    than its radius, ``0.01`` (``BSPNODE::sphere_intersects_cell_bsp``'s slack) and ``MARGIN``."""
+    planes = door_planes_of(w)
+    x, y, z = tr.global_sphere[t, 0], tr.global_sphere[t, 1], tr.global_sphere[t, 2]
+    behind = -(tr.global_sphere[t, 3] + CELL_SPHERE_SLACK + BUILDING_MARGIN)
+    for row in range(first, first + count):
+        if planes[row, 0] * x + planes[row, 1] * y + planes[row, 2] * z + planes[row, 3] <= behind:
+            return True
+    return False
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -32,6 +32,7 @@ from acphys.fast.coverage import uncovered_reason
 from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
 from acphys.fast.kernels.cells import BAIL_REASONS, R_GLIDE
+from acphys.fast.kernels.codegen import vectorising
 from acphys.fast.kernels.context import make_context
 from acphys.fast.layout import BODY, INTERPOLATION, MAX_GLIDE_NODES, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
@@ -295,15 +296,16 @@ class FastPhysics(Physics):
         tracing = self._writer is not None
         start = 0
         while start < len(self._bodies):
-            status, stop = kernels.run_bodies(
-                self._context(),
-                self._transition,
-                start,
-                tracing,
-                self._saved_body,
-                self._saved_transition,
-                self._saved_glide,
-            )
+            with vectorising():  # a first call compiles the kernels
+                status, stop = kernels.run_bodies(
+                    self._context(),
+                    self._transition,
+                    start,
+                    tracing,
+                    self._saved_body,
+                    self._saved_transition,
+                    self._saved_glide,
+                )
             self.counts.kernel += int(self._counters[kernels.STEPS])
             self.counts.touching += int(self._counters[kernels.TOUCHING])
             self._counters[kernels.STEPS] = self._counters[kernels.TOUCHING] = 0

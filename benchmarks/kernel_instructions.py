@@ -7,8 +7,11 @@ played, walks under way), then counts ``--ticks`` ticks only, and prints the ins
 body-step: in all (the engine's per-tick Python included), in the kernels, and per kernel
 function (own instructions, calls per body-step, instructions per call) and by kind of
 instruction (loads and stores, the stack's among them, float32 roundings, arithmetic, branches,
-calls); ``--annotate FUNCTION`` lists that function's most executed instructions (``objdump`` of
-the kernels' object code)::
+calls), and how much code a step executes (the 64-byte lines holding an instruction run at least
+every other step, in all and by function: a step runs its code about once, so past what the
+core's instruction caches hold, each step fetches it again; ``benchmarks/code_fetch.py`` measures
+where that begins on this machine); ``--annotate FUNCTION`` lists that function's most executed
+instructions (``objdump`` of the kernels' object code)::
 
     .venv/bin/python benchmarks/kernel_instructions.py                    # hills, 529 bodies
     .venv/bin/python benchmarks/kernel_instructions.py --workload crowd --bodies 100 --json out.json
@@ -183,6 +186,28 @@ class Symbols:
         return found[1] if found is not None and found[0] == address else None
 
 
+#: A cache line of code, in bytes: what the core fetches into its instruction cache.
+CODE_LINE = 64
+
+
+def hot_lines(costs: dict[int, int], steps: int, symbols: Symbols) -> tuple[int, dict[str, int]]:
+    """``(lines, lines by kernel function)``: the cache lines of code a body-step executes (some
+    instruction in them at least every other step), in all and by the kernel function holding
+    them (``(outside)``: Python, libc, libm). Code run about once a step, as a step's is, is
+    fetched afresh when these overflow the core's instruction caches."""
+    lines: dict[int, int] = {}
+    for address, cost in costs.items():
+        line = address // CODE_LINE
+        lines[line] = max(lines.get(line, 0), cost)
+    by_name: dict[str, int] = {}
+    hot = [line for line, cost in lines.items() if cost * 2 >= steps]
+    for line in hot:
+        start = line * CODE_LINE
+        name = symbols.owner(start) or symbols.owner(start + CODE_LINE - 1) or "(outside)"
+        by_name[name] = by_name.get(name, 0) + 1
+    return len(hot), by_name
+
+
 def attribute(
     costs: dict[int, int], calls: dict[int, int], symbols: Symbols
 ) -> tuple[int, dict[str, int], dict[str, int]]:
@@ -311,12 +336,14 @@ def measure(
         code = disassemble(workdir)
     total, own, calls = attribute(costs, called, symbols)
     kernel = sum(own.values())
+    lines, lines_by_name = hot_lines(costs, steps, symbols)
     functions = [
         {
             "function": name,
             "per_step": cost / steps,
             "calls_per_step": calls.get(name, 0) / steps,
             "per_call": cost / calls[name] if calls.get(name) else None,
+            "hot_code_kb": lines_by_name.get(name, 0) * CODE_LINE / 1024,
         }
         for name, cost in sorted(own.items(), key=lambda item: -item[1])
     ]
@@ -327,6 +354,8 @@ def measure(
         "body_steps": steps,
         "per_step": total / steps,
         "kernel_per_step": kernel / steps,
+        "hot_code_kb": lines * CODE_LINE / 1024,
+        "hot_code_outside_kb": lines_by_name.get("(outside)", 0) * CODE_LINE / 1024,
         "functions": functions,
         "kinds": {
             kind: count / steps
@@ -360,12 +389,16 @@ def main(argv: list[str] | None = None) -> int:
     print(
         f"{figures['workload']}, {figures['bodies']} bodies, {figures['body_steps']:,} body-steps counted: "
         f"{figures['per_step']:,.0f} instructions a body-step, "
-        f"{figures['kernel_per_step']:,.0f} in the kernels"
+        f"{figures['kernel_per_step']:,.0f} in the kernels; {figures['hot_code_kb']:.1f} KB of code "
+        f"executed a step ({figures['hot_code_outside_kb']:.1f} KB outside the kernels)"
     )
-    print(f"{'kernel function':40} {'instr/step':>10} {'calls/step':>10} {'instr/call':>10}")
+    print(f"{'kernel function':40} {'instr/step':>10} {'calls/step':>10} {'instr/call':>10} {'hot KB':>7}")
     for row in figures["functions"][: args.top]:
         per_call = f"{row['per_call']:10.1f}" if row["per_call"] is not None else f"{'-':>10}"
-        print(f"{row['function']:40} {row['per_step']:10.1f} {row['calls_per_step']:10.2f} {per_call}")
+        print(
+            f"{row['function']:40} {row['per_step']:10.1f} {row['calls_per_step']:10.2f} {per_call}"
+            f" {row['hot_code_kb']:7.1f}"
+        )
     print(f"\n{'kind of instruction (kernels)':40} {'instr/step':>10}")
     for kind, per_step in figures["kinds"].items():
         print(f"{kind:40} {per_step:10.1f}")

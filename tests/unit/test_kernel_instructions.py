@@ -127,3 +127,21 @@ def test_a_function_compiled_twice_counts_both_copies_from_their_own_starts(
     code = {0x1104: "vaddsd", 0x1204: "vmulsd", 0x1208: "ret"}
     rows = tool.hottest("sweep.find_collisions", costs, code, symbols, 2)
     assert rows == [(0x4, 9, "vaddsd"), (0x4, 7, "vmulsd")]
+
+
+def test_hot_code_is_the_lines_run_at_least_every_other_step(tool: ModuleType, tmp_path: Path) -> None:
+    (tmp_path / "symbols").write_text(SYMBOLS)
+    symbols = tool.Symbols(tmp_path / "symbols")
+    steps = 10
+    costs = {
+        0x1000: 10,  # run_bodies' first line, every step
+        0x1004: 10,  # the same line: counted once
+        0x1040: 5,  # its second line, every other step: hot
+        0x1080: 4,  # its third, less often: cold
+        0x10F8: 20,  # the line 0x10c0-0x10ff, the last before find_collisions: run_bodies'
+        0x1140: 30,  # find_collisions, three times a step
+        0x7F0000: 10,  # libc: outside
+    }
+    lines, by_name = tool.hot_lines(costs, steps, symbols)
+    assert lines == 5
+    assert by_name == {"tick.run_bodies": 3, "sweep.find_collisions": 1, "(outside)": 1}

@@ -1,7 +1,8 @@
 """How fast this core runs straight-line code as the code grows: where its instruction caches end.
 
 A fast-engine step runs its code about once (a sweep's passes, the commit, the sequence: few
-loops), so what bounds it may be fetching the code rather than executing it. This builds
+loops), and more of it than the instruction caches hold, so fetching the code could bound it
+(measured on 2026-12-03: it does not, see ``benchmarks/README.md``). This builds
 functions of ``--sizes`` kilobytes of straight-line code shaped like the kernels' (a load with a
 32-bit displacement, a multiply and an add on it, the float32 round trip, a store, a compare and
 branch: 53 bytes, 8 instructions), calls each many times, and prints the instructions and code

@@ -8,9 +8,8 @@ body-step: in all (the engine's per-tick Python included), in the kernels, and p
 function (own instructions, calls per body-step, instructions per call) and by kind of
 instruction (loads and stores, the stack's among them, float32 roundings, arithmetic, branches,
 calls), and how much code a step executes (the 64-byte lines holding an instruction run at least
-every other step, in all and by function: a step runs its code about once, so past what the
-core's instruction caches hold, each step fetches it again; ``benchmarks/code_fetch.py`` measures
-where that begins on this machine); ``--annotate FUNCTION`` lists that function's most executed
+every other step, in all and by function; ``benchmarks/code_fetch.py`` gives this core's rate on
+straight-line code of a size); ``--annotate FUNCTION`` lists that function's most executed
 instructions (``objdump`` of the kernels' object code)::
 
     .venv/bin/python benchmarks/kernel_instructions.py                    # hills, 529 bodies
@@ -193,8 +192,7 @@ CODE_LINE = 64
 def hot_lines(costs: dict[int, int], steps: int, symbols: Symbols) -> tuple[int, dict[str, int]]:
     """``(lines, lines by kernel function)``: the cache lines of code a body-step executes (some
     instruction in them at least every other step), in all and by the kernel function holding
-    them (``(outside)``: Python, libc, libm). Code run about once a step, as a step's is, is
-    fetched afresh when these overflow the core's instruction caches."""
+    them (``(outside)``: Python, libc, libm)."""
     lines: dict[int, int] = {}
     for address, cost in costs.items():
         line = address // CODE_LINE

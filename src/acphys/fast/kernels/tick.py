@@ -400,7 +400,7 @@ def update_physics_internal(b, quantum, origin, q, m):
     return origin, q, m
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def update_position_internal(w, b, quantum):
     """The candidate frame: root motion (the sequence played into an offset frame), scaled on
     walkable ground, combined onto the body's frame, then integrated. ``(status, origin, q, m)``:
@@ -523,13 +523,12 @@ def transition(w, tr, i, origin, q, m):
     # SPHEREPATH::init_sphere: the first two spheres, scaled
     tr.num_sphere = b.num_sphere
     for s in range(b.num_sphere):
-        tr.local_sphere[s, 0] = f32(b.sphere[s, 0] * scale)
-        tr.local_sphere[s, 1] = f32(b.sphere[s, 1] * scale)
-        tr.local_sphere[s, 2] = f32(b.sphere[s, 2] * scale)
-        tr.local_sphere[s, 3] = f32(scale * b.sphere[s, 3])
-    tr.local_low_point[0] = tr.local_sphere[0, 0]
-    tr.local_low_point[1] = tr.local_sphere[0, 1]
-    tr.local_low_point[2] = f32(tr.local_sphere[0, 2] - tr.local_sphere[0, 3])
+        x, y, z = f32(b.sphere[s, 0] * scale), f32(b.sphere[s, 1] * scale), f32(b.sphere[s, 2] * scale)
+        radius = f32(scale * b.sphere[s, 3])
+        tr.local_sphere[s, 0], tr.local_sphere[s, 1], tr.local_sphere[s, 2] = x, y, z
+        tr.local_sphere[s, 3] = radius
+        if s == 0:  # from the values, not read back: a wide read of fresh narrow stores stalls
+            tr.local_low_point[0], tr.local_low_point[1], tr.local_low_point[2] = x, y, f32(z - radius)
     # SPHEREPATH::init_path
     tr.begin_cell = b.cell
     tr.begin_cell_id = b.cell_id

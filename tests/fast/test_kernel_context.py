@@ -17,7 +17,7 @@ def _arrays() -> dict[str, np.ndarray]:
     return {name: np.zeros(shapes.get(name, (3,)), dtype=dtype) for name, dtype, _ in ARRAYS}
 
 
-@njit(cache=True, _nrt=False)
+@njit(_nrt=False)  # not cached: a cache of it would outlive a change of the records' layout
 def _touch(context, i):
     w = context[0]
     b = bodies_of(w)[i]

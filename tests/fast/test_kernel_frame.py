@@ -301,6 +301,37 @@ def test_grotate_and_rotate():
         check(K.frame_rotate(o, q, m, vt(w)), (r.rotation, tuple(r.m)), vt(w))
 
 
+def test_grotate_remembered_is_grotate_with_the_angles_terms_reused():
+    """``Frame::grotate`` (acclient.c:357421) takes the square root of the squared angle, its
+    inverse, the sine and the cosine of its half: functions of the squared angle alone. The memo
+    keeps them and reuses them while the squared angle repeats: for the same vector, for the same
+    components in another order (another axis, the same sum), from another frame; the result is
+    the reference's ``grotate`` every time, and the memo holds the last angle it met."""
+    rng = random.Random(19)
+    memo = np.zeros(4)
+    w = vector(rng)
+    reused = 0
+    for n in range(N):
+        roll = rng.random()
+        if roll < 0.3:
+            w = vector(rng)
+        elif roll < 0.45:
+            w = Vector3(w.z, w.x, w.y)  # the same squared angle about another axis
+        elif roll < 0.5:
+            x, y, z = direction(rng)
+            w = Vector3(x * EPSILON, y * EPSILON, z * EPSILON)
+        f = frame(rng, nan_origin=0.02)
+        o, q, m = ft(f)
+        g = f.copy()
+        g.grotate(w)
+        theta2 = w.x * w.x + w.y * w.y + w.z * w.z
+        reused += theta2 == memo[0] and n > 0
+        check(K.grotate_remembered(memo, o, q, m, vt(w)), (g.rotation, tuple(g.m)), vt(w))
+        if theta2 >= EPSILON * EPSILON:
+            assert memo[0] == theta2
+    assert reused > N // 2
+
+
 def test_interpolate_rotation_and_origin():
     rng = random.Random(10)
     ts = (0.0, 1.0, 0.5, -0.25, 1.25, 1e-9)

@@ -65,19 +65,21 @@ def test_the_digest_changes_with_any_byte_and_any_name(tmp_path: Path) -> None:
 
 _TURN = """
 import json, sys
+import numpy as np
 from acphys.fast.kernels.sequence import apply_physics
 origin, q, m = apply_physics(
     (1.0, 0.0, 0.0), (0.0, 0.0, 2.0), (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0),
-    (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), 0.5, 0.5,
+    (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), 0.5, 0.5, np.zeros(4),
 )
 print(json.dumps(q))
 """
 
 
 def test_an_edit_of_frame_py_reaches_a_cached_kernel_of_sequence_py(tmp_path: Path) -> None:
-    """``sequence.apply_physics`` turns its frame through ``frame.frame_rotate``. Compiled once and
-    cached, then ``frame_rotate`` edited to turn by nothing: the next process must turn by
-    nothing. Numba alone would load the cached ``apply_physics`` (its own file is unchanged)."""
+    """``sequence.apply_physics`` turns its frame through ``frame.grotate_remembered``. Compiled
+    once and cached, then the angle's terms in ``frame.py`` edited to turn by nothing: the next
+    process must turn by nothing. Numba alone would load the cached ``apply_physics`` (its own
+    file is unchanged)."""
     source = Path(stamp.ACPHYS)
     copy = tmp_path / "src" / "acphys"
     shutil.copytree(source, copy, ignore=shutil.ignore_patterns("__pycache__"))
@@ -92,7 +94,7 @@ def test_an_edit_of_frame_py_reaches_a_cached_kernel_of_sequence_py(tmp_path: Pa
     assert turned()[3] != 0.0  # a turn about z
     frame = copy / "fast" / "kernels" / "frame.py"
     text = frame.read_text("utf-8")
-    rotate = "return frame_grotate(origin, q, m, frame_localtoglobalvec(m, w))"
-    assert text.count(rotate) == 1
-    frame.write_text(text.replace(rotate, "return frame_grotate(origin, q, m, (0.0, 0.0, 0.0))"), "utf-8")
+    terms = "return f32(1.0 / theta), math.sin(theta * 0.5), f32(math.cos(theta * 0.5))"
+    assert text.count(terms) == 1
+    frame.write_text(text.replace(terms, "return f32(1.0 / theta), 0.0, 1.0"), "utf-8")
     assert turned() == [1.0, 0.0, 0.0, 0.0]

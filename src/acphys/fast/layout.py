@@ -98,6 +98,9 @@ BODY = np.dtype(
         ("seq_velocity", "f8", 3),
         ("seq_omega", "f8", 3),
         ("seq_anim_done", "i4"),  # the AnimDone hooks the last quantum queued
+        # the terms of the sequence's last turn (Frame::grotate's angle: squared, 1/angle, the sine
+        # and cosine of its half), reused while its squared angle repeats (frame.grotate_remembered)
+        ("turn_memo", "f8", 4),
     ]
 )
 

@@ -320,10 +320,37 @@ def frame_grotate(origin, q, m, w):
     theta2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
     if theta2 < _EPSILON2:
         return q, m
+    inv, s, c = _grotate_terms(theta2)
+    return _grotate_by(origin, q, m, w, inv, s, c)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def grotate_remembered(memo, origin, q, m, w):
+    """:func:`frame_grotate` with the terms of its angle kept in ``memo`` (a record's 4-array:
+    the squared angle they are of, then :func:`_grotate_terms`) and reused while the squared angle
+    repeats, as it does turn after turn of a steady motion: the square root, the division, the sine
+    and the cosine are functions of it alone, so the rotation is the same to the bit. Not retail:
+    a memo (a NaN angle never matches, an all-zero memo is no angle ``grotate`` takes)."""
+    theta2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
+    if theta2 < _EPSILON2:
+        return q, m
+    if theta2 != memo[0]:
+        memo[0] = theta2
+        memo[1], memo[2], memo[3] = _grotate_terms(theta2)
+    return _grotate_by(origin, q, m, w, memo[1], memo[2], memo[3])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _grotate_terms(theta2):
+    """``Frame::grotate``'s terms of the angle whose square is ``theta2``: 1/angle (a ``float``),
+    the sine of its half and the cosine of its half (a ``float``)."""
     theta = math.sqrt(theta2)
-    inv = f32(1.0 / theta)
-    s = math.sin(theta * 0.5)
-    c = f32(math.cos(theta * 0.5))
+    return f32(1.0 / theta), math.sin(theta * 0.5), f32(math.cos(theta * 0.5))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _grotate_by(origin, q, m, w, inv, s, c):
+    """``Frame::grotate`` past its angle's terms: the rotation about ``w`` composed before ``q``."""
     f = f32(s * w[0] * inv)
     g = f32(inv * s * w[1])
     h = s * inv * w[2]

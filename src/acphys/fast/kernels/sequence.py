@@ -32,7 +32,14 @@ import math
 import numpy as np
 from numba import njit
 
-from acphys.fast.kernels.frame import combine_anim_frame, f32, f32x3, frame_rotate, frame_subtract1
+from acphys.fast.kernels.frame import (
+    combine_anim_frame,
+    f32,
+    f32x3,
+    frame_localtoglobalvec,
+    frame_subtract1,
+    grotate_remembered,
+)
 from acphys.fast.layout import MAX_NODES
 from acphys.math.vector import Vector3
 from acphys.motion.animation import F_EPSILON, Animation, AnimSequenceNode
@@ -192,9 +199,10 @@ def store_sequences(
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def apply_physics(velocity, omega, origin, q, m, quantum, sign):
+def apply_physics(velocity, omega, origin, q, m, quantum, sign, memo):
     """The frame ``origin, q, m`` moved by ``|quantum| · velocity`` and turned by ``|quantum| · omega``
-    (signed as ``sign``); returns ``(origin, q, m)``.
+    (signed as ``sign``; the turn's terms remembered in ``memo``, the record's ``turn_memo``:
+    :func:`~acphys.fast.kernels.frame.grotate_remembered`); returns ``(origin, q, m)``.
 
     Port of :meth:`acphys.motion.sequence.Sequence.apply_physics`.
     Retail: CSequence::apply_physics @ 0x00524AB0 (acclient.c:339859)
@@ -205,7 +213,8 @@ def apply_physics(velocity, omega, origin, q, m, quantum, sign):
     dy, dz = f32(scale * velocity[1]), f32(scale * velocity[2])
     origin = f32x3(scale * velocity[0] + origin[0], dy + origin[1], dz + origin[2])
     if omega[0] != 0.0 or omega[1] != 0.0 or omega[2] != 0.0:
-        q, m = frame_rotate(origin, q, m, f32x3(scale * omega[0], scale * omega[1], scale * omega[2]))
+        w = f32x3(scale * omega[0], scale * omega[1], scale * omega[2])
+        q, m = grotate_remembered(memo, origin, q, m, frame_localtoglobalvec(m, w))  # Frame::rotate
     return origin, q, m
 
 
@@ -301,7 +310,7 @@ def leave_or_enter(
             )
     framerate = np.float64(seq.seq_framerate[node])
     if math.fabs(framerate) > F_EPSILON:
-        origin, q, m = apply_physics(velocity, omega, origin, q, m, 1.0 / framerate, quantum)
+        origin, q, m = apply_physics(velocity, omega, origin, q, m, 1.0 / framerate, quantum, seq.turn_memo)
     return True, origin, q, m
 
 
@@ -312,12 +321,13 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
     ``seq`` is a body's record; ``offset_origin, offset_q, offset_m`` the offset frame (cached).
     With :data:`STATUS_DONE` the record holds the new frame number, current node and list (the
     finished head nodes dropped, as ``apricot`` does) and the returned frame the root motion
-    composed into the offset. With :data:`STATUS_REFERENCE` nothing was changed and the offset
-    frame is returned as given: the quantum would queue a frame hook (a crossed frame whose
+    composed into the offset. With :data:`STATUS_REFERENCE` nothing was changed (but the turn
+    memo, ``turn_memo``, which holds a turn's terms whatever its use) and the offset frame is
+    returned as given: the quantum would queue a frame hook (a crossed frame whose
     ``hooks`` bit for the direction of play is set) or the AnimDone hook, or the reference would
     raise (a NaN, infinite or out-of-int32 frame number, a frame outside its animation), or would
     never end (more than :data:`MAX_ADVANCES` animations ended in the quantum). Playback runs on
-    locals; the record is written only at the end, on success.
+    locals; the sequence's fields are written only at the end, on success.
 
     Ports, inlined into one loop: :meth:`acphys.motion.sequence.Sequence.update`,
     :meth:`~acphys.motion.sequence.Sequence.update_internal`,
@@ -333,7 +343,7 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
     omega = _vec3(seq.seq_omega)
     nodes = np.int64(seq.seq_nodes)
     if nodes == 0:
-        origin, q, m = apply_physics(velocity, omega, origin, q, m, quantum, quantum)
+        origin, q, m = apply_physics(velocity, omega, origin, q, m, quantum, quantum, seq.turn_memo)
         return STATUS_DONE, origin, q, m
     curr = np.int64(seq.seq_curr)
     first_cyclic = np.int64(seq.seq_first_cyclic)
@@ -378,11 +388,13 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
                             origin, q, m, _pos_origin(pos_frames, row), _pos_q(pos_frames, row)
                         )
                     if step != 0.0:
-                        origin, q, m = apply_physics(velocity, omega, origin, q, m, step, quantum)
+                        origin, q, m = apply_physics(
+                            velocity, omega, origin, q, m, step, quantum, seq.turn_memo
+                        )
                     last += 1
         elif frame_quantum >= 0.0:
             if math.fabs(quantum) > F_EPSILON:
-                origin, q, m = apply_physics(velocity, omega, origin, q, m, quantum, quantum)
+                origin, q, m = apply_physics(velocity, omega, origin, q, m, quantum, quantum, seq.turn_memo)
             break
         else:
             if not _playable(frame_number):
@@ -407,7 +419,9 @@ def sequence_update(seq, anims, pos_frames, hooks, quantum, offset_origin, offse
                             origin, q, m, origin, q, _pos_origin(pos_frames, row), _pos_q(pos_frames, row)
                         )
                     if step != 0.0:
-                        origin, q, m = apply_physics(velocity, omega, origin, q, m, step, quantum)
+                        origin, q, m = apply_physics(
+                            velocity, omega, origin, q, m, step, quantum, seq.turn_memo
+                        )
                     last -= 1
         if not advance:
             break

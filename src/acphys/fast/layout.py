@@ -159,6 +159,32 @@ CELL = np.dtype(
 #: that slot (``CTransition::makeTransition``), kept from body to body.
 TRANSITION = np.dtype(
     [
+        # -- what one sweep leaves to the next (the first CARRIED bytes: all an update handed back
+        # restores; every other field is set afresh by the next sweep before it is read)
+        ("walk_interp", "f8"),
+        ("step_down_amt", "f8"),
+        ("backup", "i1"),
+        ("last_known_contact_n", "f8", 3),
+        ("last_known_contact_d", "f8"),
+        ("last_known_contact_plane_is_water", "u1"),
+        ("last_known_contact_plane_cell_id", "u4"),
+        ("contact_n", "f8", 3),
+        ("contact_d", "f8"),
+        ("contact_plane_is_water", "u1"),
+        ("sliding_normal", "f8", 3),
+        ("collision_normal", "f8", 3),
+        ("collide_body", "i4", MAX_COLLIDE),  # the bodies touched, by index
+        # the last cell list found (find_cell_list is a function of the cell id and the spheres'
+        # x, y and radii): reused while those stay the same
+        ("memo_valid", "u1"),
+        ("memo_cell_id", "u4"),
+        ("memo_num_sphere", "i1"),
+        ("memo_spheres", "f8", (MAX_SPHERES, 3)),
+        ("memo_num_cells", "i4"),
+        ("memo_cells", "i4", MAX_CELLS),
+        ("memo_cell_ids", "u4", MAX_CELLS),
+        ("memo_curr", "i4"),  # the cell holding sphere 0's centre, -1 for none
+        # -- set afresh by every sweep
         # OBJECTINFO
         ("oi_state", "u4"),
         ("oi_scale", "f8"),
@@ -197,7 +223,6 @@ TRANSITION = np.dtype(
         ("backup_m", "f8", 9),
         ("global_offset", "f8", 3),
         ("insert_type", "i1"),
-        ("backup", "i1"),
         ("step_up", "u1"),
         ("step_down", "u1"),
         ("collide", "u1"),
@@ -207,27 +232,15 @@ TRANSITION = np.dtype(
         ("hits_interior_cell", "u1"),
         ("walkable", "u1"),  # a walkable polygon is recorded (the kernel never records one)
         ("walkable_allowance", "f8"),
-        ("walk_interp", "f8"),
-        ("step_down_amt", "f8"),
         # COLLISIONINFO
         ("last_known_contact_plane_valid", "u1"),
-        ("last_known_contact_n", "f8", 3),
-        ("last_known_contact_d", "f8"),
-        ("last_known_contact_plane_is_water", "u1"),
-        ("last_known_contact_plane_cell_id", "u4"),
         ("contact_plane_valid", "u1"),
-        ("contact_n", "f8", 3),
-        ("contact_d", "f8"),
         ("contact_plane_cell_id", "u4"),
-        ("contact_plane_is_water", "u1"),
         ("sliding_normal_valid", "u1"),
-        ("sliding_normal", "f8", 3),
         ("collision_normal_valid", "u1"),
-        ("collision_normal", "f8", 3),
         ("collided_with_environment", "u1"),
         ("frames_stationary_fall", "i4"),
         ("num_collide", "i4"),
-        ("collide_body", "i4", MAX_COLLIDE),  # the bodies touched, by index
         # CELLARRAY
         ("num_cells", "i4"),
         ("added_outside", "u1"),
@@ -238,16 +251,6 @@ TRANSITION = np.dtype(
         ("unread_cell", "u4"),  # with bail R_UNREAD: the land cell whose landblock the arrays lack
         # no other body is filed near the whole sweep: every body's find_obj_collisions is OK
         ("lonely", "u1"),
-        # the last cell list found (find_cell_list is a function of the cell id and the spheres'
-        # x, y and radii): reused while those stay the same
-        ("memo_valid", "u1"),
-        ("memo_cell_id", "u4"),
-        ("memo_num_sphere", "i1"),
-        ("memo_spheres", "f8", (MAX_SPHERES, 3)),
-        ("memo_num_cells", "i4"),
-        ("memo_cells", "i4", MAX_CELLS),
-        ("memo_cell_ids", "u4", MAX_CELLS),
-        ("memo_curr", "i4"),  # the cell holding sphere 0's centre, -1 for none
         # the last terrain triangle found under a point in this sweep (find_terrain_poly is a
         # function of the cell and the point's x and y; a step down or a lift moves z alone)
         ("poly_memo_cell", "i4"),  # -1: none
@@ -256,3 +259,7 @@ TRANSITION = np.dtype(
         ("poly_memo", "i4"),
     ]
 )
+#: The bytes of a transition record one sweep leaves to the next: a body's update saves them
+#: before it starts and restores them when it is handed back (its sweep's own fields are dead then:
+#: the reference path's sweep sets each afresh before it reads it).
+CARRIED = TRANSITION.fields["oi_state"][1]

@@ -3,6 +3,7 @@ runtime, which a slice assignment between nested arrays needs), and whole record
 
 from __future__ import annotations
 
+from llvmlite import ir
 from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
@@ -21,6 +22,44 @@ def copy_record(typingctx, dst, src):
         return context.get_dummy_value()
 
     return types.void(dst, src), codegen
+
+
+@intrinsic(prefer_literal=True)
+def copy_head(typingctx, dst, src, size):
+    """The first ``size`` bytes (a constant) of record ``src`` into ``dst``, of the same type, as
+    straight-line moves (:func:`_copy_inline`)."""
+    if not (isinstance(dst, types.Record) and dst == src and isinstance(size, types.IntegerLiteral)):
+        return None
+    if not 0 < size.literal_value <= dst.size:
+        return None
+
+    def codegen(context, builder, signature, args):
+        _copy_inline(context, builder, args[0], args[1], size.literal_value)
+        return context.get_dummy_value()
+
+    return types.void(dst, src, size), codegen
+
+
+#: The widest move :func:`copy_head` makes, in bytes.
+CHUNK = 32
+
+
+def _copy_inline(context, builder, dst, src, size):
+    """``size`` bytes from ``src`` to ``dst`` as straight-line moves of :data:`CHUNK` bytes, then 8,
+    then 1 (no call into the C library, whose start costs a small copy as much again)."""
+    byte = ir.IntType(8).as_pointer()
+    to, start = builder.bitcast(dst, byte), builder.bitcast(src, byte)
+    offset = 0
+    for width, kind in (
+        (CHUNK, ir.VectorType(ir.IntType(64), CHUNK // 8)),
+        (8, ir.IntType(64)),
+        (1, ir.IntType(8)),
+    ):
+        while size - offset >= width:
+            at = context.get_constant(types.intp, offset)
+            value = builder.load(builder.bitcast(builder.gep(start, [at]), kind.as_pointer()), align=1)
+            builder.store(value, builder.bitcast(builder.gep(to, [at]), kind.as_pointer()), align=1)
+            offset += width
 
 
 @njit(cache=True, inline="always", _nrt=False)

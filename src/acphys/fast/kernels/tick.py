@@ -6,11 +6,12 @@ Ports of :class:`acphys.physics_obj.PhysicsObj`'s tick (``update_object``,
 shadow bookkeeping of :mod:`acphys.body.cells`, for the bodies :mod:`acphys.fast.coverage` lets the
 kernel step.
 
-A body's update is all or nothing. Before it starts, its record, its interpolation row, the
-transition and the counters are saved and every change to the shadow pool is journalled; when
-anything hands the step back (``BAIL``: something only the reference path does), all of it is
-undone and :func:`run_bodies` returns that body's index for the engine to run on the reference
-path.
+A body's update is all or nothing. Before it starts, its record, its interpolation row, what the
+transition carries from sweep to sweep (its first ``CARRIED`` bytes: the rest the next sweep sets
+afresh before reading) and the counters are saved and every change to the shadow pool is
+journalled; when anything hands the step back (``BAIL``: something only the reference path does),
+all of it is undone and :func:`run_bodies` returns that body's index for the engine to run on the
+reference path.
 """
 
 from __future__ import annotations
@@ -79,9 +80,9 @@ from acphys.fast.kernels.interpolation import GIVE_UP, blips
 from acphys.fast.kernels.interpolation import adjust_offset as glide_offset
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
-from acphys.fast.kernels.store import copy_record, fill, put
+from acphys.fast.kernels.store import copy_head, copy_record, fill, put
 from acphys.fast.kernels.sweep import find_transitional_position, nobody_near, transition_init
-from acphys.fast.layout import MAX_CELLS, MAX_COLLIDE, MAX_RECORDS
+from acphys.fast.layout import CARRIED, MAX_CELLS, MAX_COLLIDE, MAX_RECORDS
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState
 
 PS_STATIC = int(PhysicsState.STATIC)
@@ -1032,7 +1033,7 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr, saved_glide):
         if counters[OWED] + MAX_STEPS_PER_UPDATE * DEFERRED_PER_STEP > w.owed_rows:
             return LOG_FULL, i
         copy_record(saved[0], b)
-        copy_record(saved_tr[0], tr)
+        copy_head(saved_tr[0], tr, CARRIED)  # what this sweep will not set afresh
         if b.glide >= 0:
             copy_record(saved_glide[0], glides_of(w)[b.glide])
         logged, moved, steps, indebted = counters[LOGGED], counters[MOVES], counters[STEPS], counters[OWED]
@@ -1048,7 +1049,7 @@ def run_bodies(context, tr_array, start, tracing, saved, saved_tr, saved_glide):
             _note_handback(handback_of(w), tr, i)
             _undo(w)
             copy_record(b, saved[0])
-            copy_record(tr, saved_tr[0])
+            copy_head(tr, saved_tr[0], CARRIED)
             if b.glide >= 0:
                 copy_record(glides_of(w)[b.glide], saved_glide[0])
             counters[LOGGED], counters[MOVES] = logged, moved

@@ -465,14 +465,15 @@ def _lonely_sweep(w, tr, b, end, end_q):
     contact plane and the sliding normal), back towards where it was (rollbacks, edge slides),
     or along a crease by less than a step (cliff slides); lifts, landings and steps up and down
     are vertical. So the spheres stay within the box around the path's two ends widened by the
-    body's reach and the path's length (and half a metre): its reach upright when it turns
+    body's reach and the path's length (bounded by its run across x plus its run across y, which
+    spares a square root; and half a metre): its reach upright when it turns
     from upright to upright (every orientation of the sweep lies on the slerp between the two,
     upright too; :func:`~acphys.fast.kernels.grid.reach_now`). Not retail: a shortcut past
     ``find_obj_collisions``, whose every answer is then OK (:func:`~acphys.fast.kernels.sweep.
     nobody_near`)."""
     x0, y0 = block_origin(b.cell_id)
     bx, by, ex, ey = x0 + b.origin[0], y0 + b.origin[1], x0 + end[0], y0 + end[1]
-    widen = max(reach_now(b), reach_turned(b, end_q)) + math.sqrt((ex - bx) ** 2 + (ey - by) ** 2) + 0.5
+    widen = max(reach_now(b), reach_turned(b, end_q)) + abs(ex - bx) + abs(ey - by) + 0.5
     return nobody_near(
         w, tr, min(bx, ex) - widen, min(by, ey) - widen, max(bx, ex) + widen, max(by, ey) + widen
     )

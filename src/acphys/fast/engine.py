@@ -18,6 +18,7 @@ bodies directly, so after a flush the records are read again before the next ker
 from __future__ import annotations
 
 import gc
+import operator
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -102,6 +103,33 @@ class Counts:
         return self.reference / total if total else 0.0
 
 
+#: The arrays of the kernel's world record, in the order :meth:`FastPhysics._context` holds them.
+_CONTEXT_ARRAYS = (
+    "bodies",
+    "cells",
+    "landblock_index",
+    "shadow_pool",
+    "other_spans",
+    "other_shapes",
+    "heads",
+    "grid",
+    "anims",
+    "pos_frames",
+    "hooks",
+    "clock",
+    "log",
+    "moves",
+    "counters",
+    "journal",
+    "owed",
+    "handback",
+    "glides",
+    "building_shapes",
+    "door_spans",
+    "door_planes",
+)
+
+
 @contextmanager
 def _cycle_collector_paused() -> Iterator[None]:
     """Python's cycle collector held off: a write-back makes tens of thousands of small objects,
@@ -154,7 +182,8 @@ class FastPhysics(Physics):
         self._reload = True
         self._writer: Any = None
         #: The kernel's world record and the arrays it was made over (:meth:`_context`).
-        self._made_context: tuple[dict[str, np.ndarray], np.ndarray] | None = None
+        self._made_context: tuple[tuple[np.ndarray, ...], np.ndarray] | None = None
+        self._kernels_loaded = False  # run_bodies has been called (and so compiled) once
         #: Where the last update handed back was sweeping (kernels.HB_*).
         self._handback = np.zeros(kernels.HANDBACK_SLOTS, dtype=np.float64)
         #: Cells a partial write-back left as they were while writing back bodies shadowed in them:
@@ -296,23 +325,23 @@ class FastPhysics(Physics):
         tracing = self._writer is not None
         start = 0
         while start < len(self._bodies):
-            with vectorising():  # a first call compiles the kernels
-                status, stop = kernels.run_bodies(
-                    self._context(),
-                    self._transition,
-                    start,
-                    tracing,
-                    self._saved_body,
-                    self._saved_transition,
-                    self._saved_glide,
-                )
-            self.counts.kernel += int(self._counters[kernels.STEPS])
-            self.counts.touching += int(self._counters[kernels.TOUCHING])
+            arguments = (self._context(), self._transition, start, tracing)
+            arguments += (self._saved_body, self._saved_transition, self._saved_glide)
+            if self._kernels_loaded:
+                status, stop = kernels.run_bodies(*arguments)
+            else:
+                with vectorising():  # the first call compiles the kernels (or loads them)
+                    status, stop = kernels.run_bodies(*arguments)
+                self._kernels_loaded = True
+            counters = self._counters.tolist()
+            self.counts.kernel += counters[kernels.STEPS]
+            self.counts.touching += counters[kernels.TOUCHING]
             self._counters[kernels.STEPS] = self._counters[kernels.TOUCHING] = 0
-            deferred = self._owed[: int(self._counters[kernels.OWED])].tolist()
+            deferred = self._owed[: counters[kernels.OWED]].tolist() if counters[kernels.OWED] else []
             self._counters[kernels.OWED] = 0
-            self._write_log(deferred)
-            self._run_owed_hooks(deferred)
+            if deferred or tracing:
+                self._write_log(deferred)
+                self._run_owed_hooks(deferred)
             start = stop
             if status == kernels.GROW:
                 arrays.grow(int(self._counters[kernels.GROW_CELL]))
@@ -335,33 +364,34 @@ class FastPhysics(Physics):
         is a new array (a grown cell list's pool, new bodies' records, new animations); the
         arrays are never resized in place, so the same objects lie where they lay."""
         arrays = self.world_arrays
-        held = {
-            "bodies": self._records,
-            "cells": arrays.cells,
-            "landblock_index": arrays.landblock_index,
-            "shadow_pool": arrays.shadow_pool,
-            "other_spans": arrays.other_spans,
-            "other_shapes": arrays.other_shapes,
-            "heads": self._grid_heads,
-            "grid": self._grid,
-            "anims": self._animations.anims,
-            "pos_frames": self._animations.pos_frames,
-            "hooks": self._animations.hooks,
-            "clock": self._clock,
-            "log": self._log,
-            "moves": self._moves,
-            "counters": self._counters,
-            "journal": self._journal,
-            "owed": self._owed,
-            "handback": self._handback,
-            "glides": self._glides,
-            "building_shapes": arrays.building_shapes,
-            "door_spans": arrays.door_spans,
-            "door_planes": arrays.door_planes,
-        }
+        animations = self._animations
+        held = (
+            self._records,
+            arrays.cells,
+            arrays.landblock_index,
+            arrays.shadow_pool,
+            arrays.other_spans,
+            arrays.other_shapes,
+            self._grid_heads,
+            self._grid,
+            animations.anims,
+            animations.pos_frames,
+            animations.hooks,
+            self._clock,
+            self._log,
+            self._moves,
+            self._counters,
+            self._journal,
+            self._owed,
+            self._handback,
+            self._glides,
+            arrays.building_shapes,
+            arrays.door_spans,
+            arrays.door_planes,
+        )
         made = self._made_context
-        if made is None or any(held[name] is not array for name, array in made[0].items()):
-            made = self._made_context = (held, make_context(**held))
+        if made is None or not all(map(operator.is_, held, made[0])):
+            made = self._made_context = (held, make_context(**dict(zip(_CONTEXT_ARRAYS, held, strict=True))))
         return made[1]
 
     def _run_owed_hooks(self, deferred: list[list[int]]) -> None:

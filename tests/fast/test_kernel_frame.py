@@ -298,7 +298,7 @@ def test_grotate_and_rotate():
         check(K.frame_grotate(o, q, m, vt(w)), (g.rotation, tuple(g.m)), vt(w))
         r = f.copy()
         r.rotate(w)
-        check(K.frame_rotate(o, q, m, vt(w)), (r.rotation, tuple(r.m)), vt(w))
+        check(K.frame_rotate(np.zeros(4), o, q, m, vt(w)), (r.rotation, tuple(r.m)), vt(w))
 
 
 def test_grotate_remembered_is_grotate_with_the_angles_terms_reused():

@@ -34,7 +34,7 @@ from acphys.fast.kernels import grid
 from acphys.fast.kernels import tick as kernels
 from acphys.fast.kernels.cells import BAIL_REASONS, R_GLIDE
 from acphys.fast.kernels.codegen import vectorising
-from acphys.fast.kernels.context import make_context
+from acphys.fast.kernels.context import ARRAYS, make_context
 from acphys.fast.layout import BODY, INTERPOLATION, MAX_GLIDE_NODES, TRANSITION
 from acphys.fast.pool import transition_from_pool, transition_to_pool
 from acphys.fast.reach import Box, cells_under, global_xy, sweep_box, update_boxes, within_reach
@@ -103,31 +103,8 @@ class Counts:
         return self.reference / total if total else 0.0
 
 
-#: The arrays of the kernel's world record, in the order :meth:`FastPhysics._context` holds them.
-_CONTEXT_ARRAYS = (
-    "bodies",
-    "cells",
-    "landblock_index",
-    "shadow_pool",
-    "other_spans",
-    "other_shapes",
-    "heads",
-    "grid",
-    "anims",
-    "pos_frames",
-    "hooks",
-    "clock",
-    "log",
-    "moves",
-    "counters",
-    "journal",
-    "owed",
-    "handback",
-    "glides",
-    "building_shapes",
-    "door_spans",
-    "door_planes",
-)
+#: The names of the kernel's world record's arrays, in the order :meth:`FastPhysics._context` holds them.
+_CONTEXT_ARRAYS = tuple(name for name, _, _ in ARRAYS)
 
 
 @contextmanager

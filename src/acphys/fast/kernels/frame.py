@@ -369,13 +369,14 @@ def _grotate_by(origin, q, m, w, inv, s, c):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def frame_rotate(origin, q, m, w):
-    """Rotate by the local axis-angle vector ``w``: ``localtoglobalvec``, then ``grotate``.
+def frame_rotate(memo, origin, q, m, w):
+    """Rotate by the local axis-angle vector ``w``: ``localtoglobalvec``, then ``grotate`` (its
+    angle's terms kept in ``memo``: :func:`grotate_remembered`).
 
     Port of :meth:`acphys.math.frame.Frame.rotate`.
     Retail: Frame::rotate @ 0x004525B0 (acclient.c:143690)
     """
-    return frame_grotate(origin, q, m, frame_localtoglobalvec(m, w))
+    return grotate_remembered(memo, origin, q, m, frame_localtoglobalvec(m, w))
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -32,14 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-from acphys.fast.kernels.frame import (
-    combine_anim_frame,
-    f32,
-    f32x3,
-    frame_localtoglobalvec,
-    frame_subtract1,
-    grotate_remembered,
-)
+from acphys.fast.kernels.frame import combine_anim_frame, f32, f32x3, frame_rotate, frame_subtract1
 from acphys.fast.layout import MAX_NODES
 from acphys.math.vector import Vector3
 from acphys.motion.animation import F_EPSILON, Animation, AnimSequenceNode
@@ -202,7 +195,7 @@ def store_sequences(
 def apply_physics(velocity, omega, origin, q, m, quantum, sign, memo):
     """The frame ``origin, q, m`` moved by ``|quantum| · velocity`` and turned by ``|quantum| · omega``
     (signed as ``sign``; the turn's terms remembered in ``memo``, the record's ``turn_memo``:
-    :func:`~acphys.fast.kernels.frame.grotate_remembered`); returns ``(origin, q, m)``.
+    :func:`~acphys.fast.kernels.frame.frame_rotate`); returns ``(origin, q, m)``.
 
     Port of :meth:`acphys.motion.sequence.Sequence.apply_physics`.
     Retail: CSequence::apply_physics @ 0x00524AB0 (acclient.c:339859)
@@ -213,8 +206,7 @@ def apply_physics(velocity, omega, origin, q, m, quantum, sign, memo):
     dy, dz = f32(scale * velocity[1]), f32(scale * velocity[2])
     origin = f32x3(scale * velocity[0] + origin[0], dy + origin[1], dz + origin[2])
     if omega[0] != 0.0 or omega[1] != 0.0 or omega[2] != 0.0:
-        w = f32x3(scale * omega[0], scale * omega[1], scale * omega[2])
-        q, m = grotate_remembered(memo, origin, q, m, frame_localtoglobalvec(m, w))  # Frame::rotate
+        q, m = frame_rotate(memo, origin, q, m, f32x3(scale * omega[0], scale * omega[1], scale * omega[2]))
     return origin, q, m
 
 

@@ -42,9 +42,11 @@ from acphys.fast.sync import (
     interpolation_of,
     load_body,
     load_glide,
+    load_motion_queues,
     rows_of,
     store_bodies,
     store_glide,
+    store_motion_queues,
     vector_column,
 )
 from acphys.fast.world_arrays import BLOCK_CELLS, WorldArrays, build_world_arrays, shadow_entries
@@ -95,6 +97,9 @@ class Counts:
     #: Of the kernel's body-steps, those whose sweep met another body (held by it, slid off it, or
     #: stepped down onto it).
     touching: int = 0
+    #: AnimDone hooks of kernel steps run on the reference path after the kernel returned (those
+    #: the record's motion queues could not retire: :mod:`acphys.fast.kernels.motion_queues`).
+    owed_hooks: int = 0
     reasons: dict[str, int] = field(default_factory=dict)
 
     @property
@@ -372,23 +377,29 @@ class FastPhysics(Physics):
         return made[1]
 
     def _run_owed_hooks(self, deferred: list[list[int]]) -> None:
-        """Run the AnimDone hooks the kernel's steps queued in ``deferred`` (the rows of its
-        deferred log) (``process_hooks``, the end of
+        """Run the AnimDone hooks the kernel's steps owed in ``deferred`` (the rows of its deferred
+        log: those its record's motion queues could not retire) (``process_hooks``, the end of
         ``update_position_internal``), in the order the steps queued them, and the motion table's
         tick after (``CPartArray::HandleMovement``, the step's last act) when they left a motion with
         no animation to wait for. Both reach only the body's motion-table manager and motion
         interpreter (``MotionTableManager::AnimationDone`` → ``CMotionInterp::MotionDone``), which
-        no step reads and the kernel never touches, so they run when the kernel returns."""
+        no step reads, so they run when the kernel returns: on the queues as the record has them
+        (what the kernel retired before is written back first), read into the record again
+        after."""
         for kind, i, count, _, _ in deferred:
             if kind != kernels.DEFERRED_ANIM_DONE:
                 continue
             body = self._bodies[i]
+            record = self._records[i]
+            store_motion_queues(record, body)
+            self.counts.owed_hooks += count
             body.anim_hooks.extend([ANIM_DONE_HOOK] * count)
             body.process_hooks()
             parts = body.part_array
             table = parts.motion_table_manager if parts is not None else None
             if table is not None and table.pending_animations and not table.pending_animations[0].num_anims:
                 parts.handle_movement()
+            load_motion_queues(record, body)
 
     def _count_reason(self, i: int) -> None:
         record = self._records[i]

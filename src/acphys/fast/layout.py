@@ -25,6 +25,10 @@ MAX_CELLS = 8
 MAX_NODES = 4
 #: The most collision records (``collision_table``) a covered body holds.
 MAX_RECORDS = 4
+#: The most nodes of each motion queue an AnimDone hook retires (the motion table's pending
+#: animations, the motion interpreter's pending motions) the kernel holds; a longer queue's hooks
+#: are the reference path's.
+MAX_PENDING = 4
 #: The most bodies one sweep touches (``COLLISIONINFO::collide_object``); more falls back.
 MAX_COLLIDE = 4
 
@@ -101,6 +105,19 @@ BODY = np.dtype(
         # the terms of the sequence's last turn (Frame::grotate's angle: squared, 1/angle, the sine
         # and cosine of its half), reused while its squared angle repeats (frame.grotate_remembered)
         ("turn_memo", "f8", 4),
+        # -- the motion queues an AnimDone hook retires (acphys.fast.kernels.motion_queues) ------
+        # MotionTableManager::pending_animations: its length (-1: the kernel leaves the queue's
+        # hooks to the reference path), animation_counter, and head first each node's num_anims
+        # and whether its motion is no action (completing it pops no action queue)
+        ("table_len", "i1"),
+        ("table_counter", "i4"),
+        ("table_anims", "i4", MAX_PENDING),
+        ("table_plain", "u1", MAX_PENDING),
+        # CMotionInterp::pending_motions the table's MotionDone pops: its length (-1: unknown)
+        # and, head first, whether each node's motion is no action
+        ("interp_len", "i1"),
+        ("interp_plain", "u1", MAX_PENDING),
+        ("motions_owed", "u1"),  # an AnimDone hook waits for the engine: the body's later ones wait too
     ]
 )
 

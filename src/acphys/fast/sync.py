@@ -13,10 +13,16 @@ from typing import Any
 import numpy as np
 
 from acphys.body.reports import REACH_MARGIN, CollisionRecord, CollisionTable
+from acphys.fast.layout import MAX_PENDING
 from acphys.flags import PhysicsState
 from acphys.geometry.plane import Plane
 from acphys.managers.interpolation import InterpolationManager
 from acphys.math.vector import Vector3, vectors_of_float32
+from acphys.motion.commands import ACTION_MASK
+from acphys.motion.interp import MotionInterp
+from acphys.motion.movement_manager import MovementManager
+from acphys.motion.table_manager import MotionTableManager
+from acphys.part_array import PartArray
 from acphys.physics_obj import PhysicsObj
 
 
@@ -93,6 +99,88 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
         record["step_up_height"] = parts.setup.step_up_height
         record["step_down_height"] = parts.setup.step_down_height
         record["free_heading"] = parts.allows_free_heading()
+    load_motion_queues(record, body)
+
+
+#: The methods an AnimDone hook runs through, on the classes the kernel ports them from.
+_HOOK_CHAIN = (PhysicsObj.hook_anim_done, PhysicsObj.motion_done)
+
+
+def motion_queues(body: PhysicsObj) -> tuple[MotionTableManager | None, MotionInterp | None] | None:
+    """What ``body``'s AnimDone hooks act on: its motion table's manager (None: they do nothing)
+    and the motion interpreter its completed motions reach (None: none); None when the hooks may
+    do something else (a subclass's methods on the way, or another body's managers), which the
+    kernel then leaves to the reference path
+    (:func:`acphys.fast.kernels.motion_queues.retire_motions`)."""
+    parts = body.part_array
+    if parts is None:
+        return None, None
+    if (type(body).hook_anim_done, type(body).motion_done) != _HOOK_CHAIN or type(parts) is not PartArray:
+        return None
+    table = parts.motion_table_manager
+    if table is None:
+        return None, None
+    if type(table) is not MotionTableManager or table.physics_obj not in (None, body):
+        return None
+    movement = body.movement_manager if table.physics_obj is not None else None
+    if movement is None:
+        return table, None
+    interp = movement.motion_interpreter
+    if type(movement) is not MovementManager or (interp is not None and type(interp) is not MotionInterp):
+        return None
+    return table, interp if interp is not None and interp.physics_obj is not None else None
+
+
+def load_motion_queues(record: np.void, body: PhysicsObj) -> None:
+    """Copy the motion queues ``body``'s AnimDone hooks retire into its record (``table_*``,
+    ``interp_*``): lengths of -1 when the kernel leaves them to the reference path (see
+    :func:`motion_queues`; more nodes than the record holds, or counts past its integers)."""
+    record["motions_owed"] = False
+    record["table_len"] = record["interp_len"] = -1
+    queues = motion_queues(body)
+    if queues is None:
+        return
+    table, interp = queues
+    nodes = table.pending_animations if table is not None else []
+    counter = table.animation_counter if table is not None else 0
+    counts = [node.num_anims for node in nodes]
+    if len(nodes) > MAX_PENDING or not all(0 <= count < 2**31 for count in (*counts, counter)):
+        return
+    record["table_len"] = len(nodes)
+    record["table_counter"] = counter
+    for n, node in enumerate(nodes):
+        record["table_anims"][n] = counts[n]
+        record["table_plain"][n] = not node.motion & ACTION_MASK
+    motions = interp.pending_motions if interp is not None else []
+    if len(motions) <= MAX_PENDING:
+        record["interp_len"] = len(motions)
+        for n, motion in enumerate(motions):
+            record["interp_plain"][n] = not motion.motion & ACTION_MASK
+
+
+def store_motion_queues(values: Any, body: PhysicsObj) -> None:
+    """Write the motion queues of ``values`` (a body's record, or its fields) back into ``body``:
+    the kernel only retires head nodes, so each queue loses its head down to the record's length
+    (again: nothing) and the table's counter is the record's."""
+    queues = motion_queues(body)
+    if values["table_len"] < 0 or queues is None:
+        return
+    table, interp = queues
+    if table is not None:
+        _retire_to(table.pending_animations, int(values["table_len"]))
+        table.animation_counter = int(values["table_counter"])
+    if interp is not None and values["interp_len"] >= 0:
+        _retire_to(interp.pending_motions, int(values["interp_len"]))
+
+
+def _retire_to(queue: list[Any], length: int) -> None:
+    """Drop the head of ``queue`` down to ``length`` nodes."""
+    if len(queue) < length:
+        raise RuntimeError(
+            f"fast engine: a motion queue of {len(queue)} nodes behind a record of {length}: "
+            "a bug in acphys, please report it"
+        )
+    del queue[: len(queue) - length]
 
 
 def interpolation_of(body: PhysicsObj) -> InterpolationManager | None:
@@ -164,6 +252,9 @@ _STORED = (
     "record_obj",
     "record_time",
     "record_ethereal",
+    "table_len",
+    "table_counter",
+    "interp_len",
 )
 
 
@@ -229,6 +320,7 @@ def store_bodies(records: np.ndarray, bodies: list[PhysicsObj]) -> None:
             body.step_events.clear()  # the kernel's step recorded them
         body.colliding_with_environment = bool(values["colliding_with_environment"])
         _store_records(body, values)
+        store_motion_queues(values, body)
         if body.part_array is not None:
             body.part_array.update_parts(frame)
 

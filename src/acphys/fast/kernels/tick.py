@@ -78,6 +78,7 @@ from acphys.fast.kernels.frame import (
 from acphys.fast.kernels.grid import MAX_REACH, block_origin, grid_place, reach_now, reach_turned, span_bits
 from acphys.fast.kernels.interpolation import GIVE_UP, blips
 from acphys.fast.kernels.interpolation import adjust_offset as glide_offset
+from acphys.fast.kernels.motion_queues import retire_motions
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
 from acphys.fast.kernels.store import copy_head, copy_record, fill, put
@@ -816,9 +817,11 @@ def set_position_internal(w, tr, i, now, events):
 def update_object_internal(w, tr, i, quantum, now):
     """One physics step of body ``i``: candidate, sweep, commit. Returns ``(status, events)``.
 
-    AnimDone hooks the candidate's quantum queued are owed: logged in ``owed`` (body, count) for
-    the engine to run on the reference path after the kernel returns. They reach only the body's
-    motion-table manager and motion interpreter, which no step reads, so they may run late.
+    AnimDone hooks the candidate's quantum queued retire the motions they complete in the record's
+    queues (:func:`~acphys.fast.kernels.motion_queues.retire_motions`, with the motion table's
+    ``HandleMovement`` check after); those it leaves to the reference path are owed: logged in
+    ``owed`` (body, count) for the engine to run after the kernel returns. They reach only the
+    body's motion-table manager and motion interpreter, which no step reads, so they may run late.
 
     Port of :meth:`acphys.physics_obj.PhysicsObj.update_object_internal` (a covered body has no
     managers to tick but its position manager's interpolation).
@@ -836,7 +839,8 @@ def update_object_internal(w, tr, i, quantum, now):
         return bail(tr, R_HOOK), 0
     if status == STATUS_GLIDE:
         return bail(tr, R_GLIDE), 0
-    if status == STATUS_ANIM_DONE:
+    if status == STATUS_ANIM_DONE and not retire_motions(b, b.seq_anim_done):
+        b.motions_owed = True
         _defer(w, DEFERRED_ANIM_DONE, i, b.seq_anim_done, 0, 0)
     status, events = move_to_candidate(w, tr, i, quantum, now, origin, q, m)
     # PositionManager::UseTime, the step's last act (the movement manager's and the motion

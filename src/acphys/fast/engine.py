@@ -260,8 +260,11 @@ class FastPhysics(Physics):
         """Whether a landblock the arrays hold as terrain-less cells has since been added to the
         world (the arrays are then made again)."""
         assert self._arrays is not None
+        void = self._arrays.void_blocks
+        if not void:
+            return False
         landscape = self.world.landscape
-        return any(landscape.get_landblock(key << 16) is not None for key in self._arrays.void_blocks)
+        return any(landscape.get_landblock(key << 16) is not None for key in void)
 
     def _reload_all(self) -> None:
         for i in range(len(self._bodies)):

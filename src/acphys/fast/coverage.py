@@ -3,9 +3,11 @@
 A body's record (:data:`acphys.fast.layout.BODY`) holds what a step of a body reads and writes
 while nothing else about the body is going on: no manager at work but the movement manager's
 motion interpreter (which only acts when the body lands, leaves the ground or an animation
-ends: the kernel hands those steps back), the position manager's interpolation (its queue a row
-of the interpolation table) and the motion table's manager with no motion to complete, no hooks
-waiting, a sequence the kernel can play (:func:`acphys.fast.kernels.sequence.load_sequence`).
+ends: the kernel hands the first two back, and retires the motions an AnimDone hook completes in
+the record's copy of the queues, :mod:`acphys.fast.kernels.motion_queues`), the position
+manager's interpolation (its queue a row of the interpolation table) and the motion table's
+manager with no motion to complete, no hooks waiting, a sequence the kernel can play
+(:func:`acphys.fast.kernels.sequence.load_sequence`).
 :func:`uncovered_reason` names the first thing that is going on (a manager at work, a hook
 waiting, a shape the kernel does not sweep, ...); such a body runs on the reference path until
 it is idle again. The kernel itself hands a step back when it meets something it does not cover

@@ -13,6 +13,7 @@ deciding line; the differential ones run the reference's hook chain on real bodi
 from __future__ import annotations
 
 import random
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -21,6 +22,7 @@ from numba import njit
 
 import acphys
 from acphys.bench import WORKLOADS
+from acphys.fast.differential import same_run
 from acphys.fast.kernels.motion_queues import retire_motions
 from acphys.fast.layout import BODY, MAX_PENDING
 from acphys.fast.sync import load_motion_queues, motion_queues, store_motion_queues
@@ -29,6 +31,7 @@ from acphys.motion.commands import ACTION_MASK
 from acphys.motion.motion_states import MotionNode
 from acphys.motion.table_manager import AnimNode
 from acphys.physics_obj import PhysicsObj
+from acphys.scenario import parse_scenario
 
 pytestmark = pytest.mark.kernels
 
@@ -296,3 +299,99 @@ def test_walkers_starting_owe_no_hook_and_end_as_on_the_reference() -> None:
     for mine, theirs in zip(fast.bodies, reference.bodies, strict=True):
         assert _state(mine) == _state(theirs), mine.name
     assert all(not _state(body)[0] for body in fast.bodies)  # the links did end: their nodes are gone
+
+
+#: A human whose motion table has an action (Cheer: ``ACTION_MASK``) linked from Ready and
+#: from a walk, standing, then cheering, walking, cheering as it walks, stopping.
+_CHEERING = """
+[scenario]
+name = "cheering"
+duration = 3.0
+driver_hz = 30.0
+
+[motion_table.cheerful]
+default_style = "NonCombat"
+
+[[motion_table.cheerful.cycle]]
+motion = "Ready"
+framerate = 30.0
+frames = 30
+
+[[motion_table.cheerful.cycle]]
+motion = "WalkForward"
+framerate = 30.0
+frames = 30
+velocity = [0.0, 3.12, 0.0]
+
+[[motion_table.cheerful.link]]
+from = "Ready"
+to = "WalkForward"
+framerate = 30.0
+frames = 4
+
+[[motion_table.cheerful.link]]
+from = "WalkForward"
+to = "Ready"
+framerate = 30.0
+frames = 3
+
+[[motion_table.cheerful.link]]
+from = "Ready"
+to = "Cheer"
+framerate = 30.0
+frames = 9
+
+[[motion_table.cheerful.link]]
+from = "WalkForward"
+to = "Cheer"
+framerate = 30.0
+frames = 6
+
+[[body]]
+name = "fan"
+setup = "human"
+motion_table = "cheerful"
+landblock = "0xA9B4"
+origin = [40.0, 40.0, 0.0]
+on_ground = true
+
+[[event]]
+at = 0.2
+body = "fan"
+action = "motion"
+motion = "Cheer"
+
+[[event]]
+at = 1.0
+body = "fan"
+action = "motion"
+motion = "WalkForward"
+
+[[event]]
+at = 1.6
+body = "fan"
+action = "motion"
+motion = "Cheer"
+
+[[event]]
+at = 2.4
+body = "fan"
+action = "stop_motion"
+motion = "WalkForward"
+"""
+
+
+def test_an_actions_hooks_are_owed_and_end_as_on_the_reference(tmp_path: Path) -> None:
+    """A cheer's AnimDone completes an action: the kernel owes it to the engine, which writes the
+    record's queues back, runs the reference's chain and reads them again. Traces byte for byte
+    the reference's, the queues and the action queue the same after, and the walk's links still
+    retired in the kernel around them."""
+    sims = {}
+    for engine in ("reference", "fast"):
+        sims[engine] = parse_scenario(_CHEERING, "<cheering>", engine=engine)
+        sims[engine].run(trace=tmp_path / f"{engine}.jsonl")
+    assert same_run(tmp_path / "reference.jsonl", tmp_path / "fast.jsonl")
+    counts = sims["fast"].physics.counts
+    assert counts.owed_hooks >= 2 and counts.kernel > 60, counts
+    (mine,), (theirs,) = sims["fast"].bodies, sims["reference"].bodies
+    assert _state(mine) == _state(theirs)

@@ -301,84 +301,38 @@ def test_walkers_starting_owe_no_hook_and_end_as_on_the_reference() -> None:
     assert all(not _state(body)[0] for body in fast.bodies)  # the links did end: their nodes are gone
 
 
+def _table_entry(kind: str, motion: str, frames: int, extra: str = "") -> str:
+    lines = [f"[[motion_table.cheerful.{kind}]]", motion, "framerate = 30.0", f"frames = {frames}", extra]
+    return "\n".join(line for line in lines if line) + "\n\n"
+
+
+def _event(at: float, action: str, motion: str) -> str:
+    return f'[[event]]\nat = {at}\nbody = "fan"\naction = "{action}"\nmotion = "{motion}"\n\n'
+
+
 #: A human whose motion table has an action (Cheer: ``ACTION_MASK``) linked from Ready and
 #: from a walk, standing, then cheering, walking, cheering as it walks, stopping.
-_CHEERING = """
-[scenario]
-name = "cheering"
-duration = 3.0
-driver_hz = 30.0
-
-[motion_table.cheerful]
-default_style = "NonCombat"
-
-[[motion_table.cheerful.cycle]]
-motion = "Ready"
-framerate = 30.0
-frames = 30
-
-[[motion_table.cheerful.cycle]]
-motion = "WalkForward"
-framerate = 30.0
-frames = 30
-velocity = [0.0, 3.12, 0.0]
-
-[[motion_table.cheerful.link]]
-from = "Ready"
-to = "WalkForward"
-framerate = 30.0
-frames = 4
-
-[[motion_table.cheerful.link]]
-from = "WalkForward"
-to = "Ready"
-framerate = 30.0
-frames = 3
-
-[[motion_table.cheerful.link]]
-from = "Ready"
-to = "Cheer"
-framerate = 30.0
-frames = 9
-
-[[motion_table.cheerful.link]]
-from = "WalkForward"
-to = "Cheer"
-framerate = 30.0
-frames = 6
-
-[[body]]
-name = "fan"
-setup = "human"
-motion_table = "cheerful"
-landblock = "0xA9B4"
-origin = [40.0, 40.0, 0.0]
-on_ground = true
-
-[[event]]
-at = 0.2
-body = "fan"
-action = "motion"
-motion = "Cheer"
-
-[[event]]
-at = 1.0
-body = "fan"
-action = "motion"
-motion = "WalkForward"
-
-[[event]]
-at = 1.6
-body = "fan"
-action = "motion"
-motion = "Cheer"
-
-[[event]]
-at = 2.4
-body = "fan"
-action = "stop_motion"
-motion = "WalkForward"
-"""
+_CHEERING = (
+    '[scenario]\nname = "cheering"\nduration = 3.0\ndriver_hz = 30.0\n\n'
+    '[motion_table.cheerful]\ndefault_style = "NonCombat"\n\n'
+    + _table_entry("cycle", 'motion = "Ready"', 30)
+    + _table_entry("cycle", 'motion = "WalkForward"', 30, "velocity = [0.0, 3.12, 0.0]")
+    + "".join(
+        _table_entry("link", f'from = "{start}"\nto = "{end}"', frames)
+        for start, end, frames in (
+            ("Ready", "WalkForward", 4),
+            ("WalkForward", "Ready", 3),
+            ("Ready", "Cheer", 9),
+            ("WalkForward", "Cheer", 6),
+        )
+    )
+    + '[[body]]\nname = "fan"\nsetup = "human"\nmotion_table = "cheerful"\nlandblock = "0xA9B4"\n'
+    "origin = [40.0, 40.0, 0.0]\non_ground = true\n\n"
+    + _event(0.2, "motion", "Cheer")
+    + _event(1.0, "motion", "WalkForward")
+    + _event(1.6, "motion", "Cheer")
+    + _event(2.4, "stop_motion", "WalkForward")
+)
 
 
 def test_an_actions_hooks_are_owed_and_end_as_on_the_reference(tmp_path: Path) -> None:

@@ -103,7 +103,7 @@ def load_body(record: np.void, body: PhysicsObj, cell_index: int, covered: bool)
 
 
 #: The methods an AnimDone hook runs through, on the classes the kernel ports them from.
-_HOOK_CHAIN = (PhysicsObj.hook_anim_done, PhysicsObj.motion_done)
+_HOOK_CHAIN = (PhysicsObj.process_hooks, PhysicsObj.hook_anim_done, PhysicsObj.motion_done)
 
 
 def motion_queues(body: PhysicsObj) -> tuple[MotionTableManager | None, MotionInterp | None] | None:
@@ -115,14 +115,17 @@ def motion_queues(body: PhysicsObj) -> tuple[MotionTableManager | None, MotionIn
     parts = body.part_array
     if parts is None:
         return None, None
-    if (type(body).hook_anim_done, type(body).motion_done) != _HOOK_CHAIN or type(parts) is not PartArray:
+    kind = type(body)
+    chain = (kind.process_hooks, kind.hook_anim_done, kind.motion_done)
+    if chain != _HOOK_CHAIN or type(parts) is not PartArray:
         return None
     table = parts.motion_table_manager
     if table is None:
         return None, None
-    if type(table) is not MotionTableManager or table.physics_obj not in (None, body):
+    owner = table.physics_obj
+    if type(table) is not MotionTableManager or (owner is not None and owner is not body):
         return None
-    movement = body.movement_manager if table.physics_obj is not None else None
+    movement = body.movement_manager if owner is not None else None
     if movement is None:
         return table, None
     interp = movement.motion_interpreter

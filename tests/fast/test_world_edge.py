@@ -8,8 +8,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
-from acphys.fast.differential import compare_engines
+from acphys.fast.differential import compare_engines, same_run
 from acphys.fast.world_arrays import BLOCK_CELLS, build_world_arrays
 from acphys.scenario import parse_scenario
 from acphys.simulation import Simulation
@@ -183,3 +184,40 @@ def test_a_landblock_loaded_renumbers_the_cells() -> None:
     half = len(lists) // 2
     assert lists[:half] == lists[half:]
     assert ("pusher", 0x80800022) in [entry[:2] for entry in lists]
+
+
+def test_a_landblock_added_between_runs_replaces_its_stand_in(tmp_path: Path) -> None:
+    """Two landblocks the bodies reached are added to the world after 2 s (the runner's to the
+    north, the falling balls' to the east, flat at the ground's height): the fast engine makes its
+    arrays again over them (the stand-ins were void), the balls land there as on the reference
+    engine, and both runs' traces are the reference's. Adding a landblock no body reached leaves
+    the arrays as they are."""
+    runs = {}
+    for engine in ("reference", "fast"):
+        sim = _edge(engine)
+        sim.run(until=2.0, trace=tmp_path / f"{engine}-before.jsonl")
+        if engine == "fast":
+            arrays = sim.physics.world_arrays
+            assert {0x8081, 0x8180} <= arrays.void_blocks
+            sim.world.set_flat_ground(0x9090, 50.0)  # far from every body: nothing to make again
+            sim.step()
+            assert sim.physics.world_arrays is arrays
+        else:
+            sim.step()
+        sim.world.set_flat_ground(0x8081, 50.0)
+        sim.world.set_flat_ground(0x8180, 50.0)
+        sim.run(trace=tmp_path / f"{engine}-after.jsonl")
+        runs[engine] = sim
+    for part in ("before", "after"):
+        assert same_run(tmp_path / f"reference-{part}.jsonl", tmp_path / f"fast-{part}.jsonl"), part
+    arrays = runs["fast"].physics.world_arrays
+    assert not {0x8081, 0x8180} & arrays.void_blocks
+    b = int(arrays.landblock_index[0x8180])
+    assert arrays.cells[BLOCK_CELLS * b : BLOCK_CELLS * (b + 1)]["num_polys"].tolist() == [2] * BLOCK_CELLS
+    beyond = next(body for body in runs["fast"].bodies if body.name == "beyond")
+    assert beyond.position.frame.origin.z == pytest.approx(50.0, abs=0.5)  # landed on the new ground
+    # the bodies standing in (or shadowed into) a stand-in cell take one step on the reference
+    # path, which moves them into the landblock's own cells (coverage.uncovered_reason)
+    counts = runs["fast"].physics.counts
+    assert set(counts.reasons) <= {"not in a known land cell", "shadows in cells the kernel does not know"}
+    assert counts.reference <= 3 and counts.kernel >= 5 * 5 * 30 - 3

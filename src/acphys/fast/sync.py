@@ -165,8 +165,10 @@ def store_motion_queues(values: Any, body: PhysicsObj) -> None:
     """Write the motion queues of ``values`` (a body's record, or its fields) back into ``body``:
     the kernel only retires head nodes, so each queue loses its head down to the record's length
     (again: nothing) and the table's counter is the record's."""
+    if values["table_len"] < 0:
+        return
     queues = motion_queues(body)
-    if values["table_len"] < 0 or queues is None:
+    if queues is None:
         return
     table, interp = queues
     if table is not None:

@@ -280,3 +280,8 @@ TRANSITION = np.dtype(
 #: before it starts and restores them when it is handed back (its sweep's own fields are dead then:
 #: the reference path's sweep sets each afresh before it reads it).
 CARRIED = TRANSITION.fields["oi_state"][1]
+
+#: The bytes of a plane in the records: its normal ``*_n`` then its distance ``*_d``, side by side
+#: (the contact planes of BODY and TRANSITION, the transition's last known contact plane), copied
+#: at once (:func:`acphys.fast.kernels.store.copy_span`).
+PLANE_BYTES = 32

@@ -40,15 +40,39 @@ def copy_head(typingctx, dst, src, size):
     return types.void(dst, src, size), codegen
 
 
+@intrinsic(prefer_literal=True)
+def copy_span(typingctx, dst, dst_field, src, src_field, size):
+    """``size`` bytes (a constant) of record ``src`` from its field ``src_field`` on into record
+    ``dst`` from its field ``dst_field`` on, as straight-line moves (:func:`_copy_inline`): fields
+    side by side in both records copied at once, so that a wide read of them later takes the
+    whole store (a wide read of several narrow stores waits for them to retire)."""
+    records = isinstance(dst, types.Record) and isinstance(src, types.Record)
+    names = isinstance(dst_field, types.StringLiteral) and isinstance(src_field, types.StringLiteral)
+    if not (records and names and isinstance(size, types.IntegerLiteral)):
+        return None
+    to, start = dst.offset(dst_field.literal_value), src.offset(src_field.literal_value)
+    count = size.literal_value
+    if not (count > 0 and to + count <= dst.size and start + count <= src.size):
+        return None
+
+    def codegen(context, builder, signature, args):
+        _copy_inline(context, builder, args[0], args[2], count, to, start)
+        return context.get_dummy_value()
+
+    return types.void(dst, dst_field, src, src_field, size), codegen
+
+
 #: The widest move :func:`copy_head` makes, in bytes.
 CHUNK = 32
 
 
-def _copy_inline(context, builder, dst, src, size):
-    """``size`` bytes from ``src`` to ``dst`` as straight-line moves of :data:`CHUNK` bytes, then 8,
-    then 1 (no call into the C library, whose start costs a small copy as much again)."""
+def _copy_inline(context, builder, dst, src, size, dst_at=0, src_at=0):
+    """``size`` bytes from ``src`` (from byte ``src_at``) to ``dst`` (from byte ``dst_at``) as
+    straight-line moves of :data:`CHUNK` bytes, then 8, then 1 (no call into the C library, whose
+    start costs a small copy as much again)."""
     byte = ir.IntType(8).as_pointer()
-    to, start = builder.bitcast(dst, byte), builder.bitcast(src, byte)
+    to = builder.gep(builder.bitcast(dst, byte), [context.get_constant(types.intp, dst_at)])
+    start = builder.gep(builder.bitcast(src, byte), [context.get_constant(types.intp, src_at)])
     offset = 0
     for width, kind in (
         (CHUNK, ir.VectorType(ir.IntType(64), CHUNK // 8)),

@@ -81,9 +81,9 @@ from acphys.fast.kernels.interpolation import adjust_offset as glide_offset
 from acphys.fast.kernels.motion_queues import retire_motions
 from acphys.fast.kernels.path import cache_global_curr_center, set_sliding_normal, t3, t4, t9
 from acphys.fast.kernels.sequence import STATUS_ANIM_DONE, STATUS_DONE, STATUS_REFERENCE, sequence_update
-from acphys.fast.kernels.store import copy_head, copy_record, fill, put
+from acphys.fast.kernels.store import copy_head, copy_record, copy_span, fill, put
 from acphys.fast.kernels.sweep import find_transitional_position, nobody_near, transition_init
-from acphys.fast.layout import CARRIED, MAX_CELLS, MAX_COLLIDE, MAX_RECORDS
+from acphys.fast.layout import CARRIED, MAX_CELLS, MAX_COLLIDE, MAX_RECORDS, PLANE_BYTES
 from acphys.flags import ObjectInfoState, PhysicsState, TransientState
 
 PS_STATIC = int(PhysicsState.STATIC)
@@ -497,14 +497,12 @@ def transition(w, tr, i, origin, q, m):
         is_water = bool(ts & TS_WATER_CONTACT)
         v, n = b.velocity, b.contact_n
         tr.last_known_contact_plane_valid = True
-        put(tr.last_known_contact_n, b.contact_n)
-        tr.last_known_contact_d = b.contact_d
+        copy_span(tr, "last_known_contact_n", b, "contact_n", PLANE_BYTES)  # and _d
         tr.last_known_contact_plane_is_water = is_water
         if not v[2] * n[2] + v[1] * n[1] + v[0] * n[0] > EPSILON:  # check_contact(True)
             tr.last_known_contact_plane_cell_id = b.contact_cell_id
             tr.contact_plane_valid = True
-            put(tr.contact_n, b.contact_n)
-            tr.contact_d = b.contact_d
+            copy_span(tr, "contact_n", b, "contact_n", PLANE_BYTES)  # and contact_d
             tr.contact_plane_is_water = is_water
             state |= OI_CONTACT
             if ts & TS_ON_WALKABLE:

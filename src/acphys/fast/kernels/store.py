@@ -62,7 +62,7 @@ def copy_span(typingctx, dst, dst_field, src, src_field, size):
     return types.void(dst, dst_field, src, src_field, size), codegen
 
 
-#: The widest move :func:`copy_head` makes, in bytes.
+#: The widest move :func:`_copy_inline` makes (for :func:`copy_head` and :func:`copy_span`), in bytes.
 CHUNK = 32
 
 
